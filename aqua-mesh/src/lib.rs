@@ -1,0 +1,66 @@
+//! aqua-mesh: the geometry of aquaculture structures.
+//!
+//! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`], cages.md §2–§10), a flat
+//!   net panel builder ([`PanelParams`], §11) and a single-line builder ([`LineParams`], §11).
+//! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
+//! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]).
+//!
+//! # Governing relations
+//!
+//! Discretisation (round half away from zero, never truncate), for circumference C, side depth
+//! H, element length el, bottom radius R_b (square: side a = C/4):
+//!
+//! ```text
+//! NT = round(C/el)            (square: NT = 4·round(a/el))
+//! NN = round(H/el)
+//! BN = round(R_b/(√2·el))     (square: round(a/(√2·el)))
+//! net node (i, ℓ) = origin + ρ_ℓ·u_i + z_ℓ·ẑ,   id = i·(NN+BN) + ℓ
+//! ```
+//!
+//! Mesh grouping (cages.md §8, fem.md §4): one numerical twine of mean as-built length L̄ stands
+//! for λ = L̄ / l_p physical twines of diameter dw0 and bar length l_p, with
+//!
+//! ```text
+//! dws = dwe = √λ · dw0      (structural/elastic: mass, volume, EA)
+//! dwh = λ · dw0             (hydrodynamic: projected area)
+//! ```
+//!
+//! Point weights W [N] (sinkers W = w·C/NT each, centre weight, tip weight) become point bodies
+//! of mass W/g and zero volume downstream.
+//!
+//! # Data model
+//!
+//! A [`Mesh`] holds node positions, 2-node [`LineElement`]s, [`Panel`]s (triangles and quads in
+//! cyclic order, normal out of the cage), [`Group`]s (name, [`Role`], members, [`Section`]),
+//! [`PointWeight`]s and one [`Object`] per builder call (with its [`NetGrouping`]). All units SI,
+//! z up, z = 0 at the still-water level.
+
+pub mod cage;
+pub mod error;
+pub mod gmsh;
+pub mod line;
+pub mod mesh;
+pub mod net;
+pub mod panel;
+pub mod vtk;
+
+pub use cage::{CageParams, CageType, ResolvedCage};
+pub use error::{FilePos, MeshError, Result};
+pub use gmsh::{GmshParams, import_gmsh, read_msh};
+pub use line::{Fairlead, LineParams, LineShape};
+pub use mesh::{
+    CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,
+    ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section, SectionOverride,
+};
+pub use net::{NetGrouping, NetParams, NetResolved};
+pub use panel::{PanelFixed, PanelParams};
+pub use vtk::{PvdWriter, VtkArray, VtkArrays, VtuSeries, write_vtu};
+
+/// Build several cages, panels or lines into one mesh (objects appended in order).
+pub fn merge(meshes: impl IntoIterator<Item = Mesh>) -> Mesh {
+    let mut out = Mesh::default();
+    for m in meshes {
+        out.append(m);
+    }
+    out
+}
