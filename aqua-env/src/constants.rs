@@ -1,0 +1,64 @@
+//! Fluid constants and water depth (environment spec §2).
+
+use serde::Serialize;
+
+/// Standard gravity [m/s²].
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+/// Default sea-water density [kg/m³].
+pub const SEA_WATER_DENSITY: f64 = 1025.0;
+/// Default kinematic viscosity of sea water at 15 °C [m²/s].
+pub const SEA_WATER_VISCOSITY: f64 = 1.19e-6;
+
+/// Water depth h [m]: a flat seabed at z = −h, or no seabed at all.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Depth {
+    /// Flat seabed at z = −h, h > 0 [m].
+    Finite(f64),
+    /// Deep water: no seabed (allowed for waves only).
+    Infinite,
+}
+
+impl Depth {
+    /// The depth in metres, `None` for infinite depth.
+    pub fn finite(self) -> Option<f64> {
+        match self {
+            Depth::Finite(h) => Some(h),
+            Depth::Infinite => None,
+        }
+    }
+}
+
+/// The physical constants every load model reads (no module holds its own copy).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Constants {
+    /// Gravitational acceleration g [m/s²].
+    pub gravity: f64,
+    /// Water density ρ_w [kg/m³].
+    pub density: f64,
+    /// Kinematic viscosity ν [m²/s].
+    pub kinematic_viscosity: f64,
+    /// Water depth.
+    pub depth: Depth,
+}
+
+impl Default for Constants {
+    fn default() -> Self {
+        Self {
+            gravity: STANDARD_GRAVITY,
+            density: SEA_WATER_DENSITY,
+            kinematic_viscosity: SEA_WATER_VISCOSITY,
+            depth: Depth::Infinite,
+        }
+    }
+}
+
+impl Constants {
+    /// Default constants with a finite depth h [m].
+    pub fn with_depth(h: f64) -> Self {
+        Self {
+            depth: Depth::Finite(h),
+            ..Self::default()
+        }
+    }
+}

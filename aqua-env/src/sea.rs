@@ -1,0 +1,414 @@
+//! The sea a structure sits in: constants, current and waves, evaluated at many points at one
+//! time (environment spec §3).
+
+use crate::airy::{LinearSum, RawKinematics};
+use crate::constants::{Constants, Depth};
+use crate::current::Current;
+use crate::ramp::Ramp;
+use crate::stokes::Stokes2;
+use crate::stretching::Stretching;
+use rayon::prelude::*;
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// What the water does at one point and time.
+///
+/// Current and wave parts are separate because a wake factor multiplies the current only.
+/// Dry points (above the instantaneous surface) and points below the seabed have zero
+/// velocities, accelerations and pressure.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FlowPoint {
+    /// Surface elevation η(x, y, t) [m] (wave ramp applied).
+    pub eta: f64,
+    /// Submergence ζ = η − z [m], positive under water.
+    pub submergence: f64,
+    /// Current velocity U_c [m/s] (ramp applied, no wake).
+    pub current: [f64; 3],
+    /// ∂U_c/∂t [m/s²] (non-zero only while a ramp or schedule blend runs).
+    pub current_acc: [f64; 3],
+    /// Wave orbital velocity [m/s].
+    pub wave_vel: [f64; 3],
+    /// Local wave acceleration ∂u/∂t [m/s²].
+    pub wave_acc: [f64; 3],
+    /// Wave dynamic pressure p_d [Pa].
+    pub p_dyn: f64,
+}
+
+impl FlowPoint {
+    /// Total fluid velocity U_c + u_w [m/s].
+    pub fn velocity(&self) -> [f64; 3] {
+        [
+            self.current[0] + self.wave_vel[0],
+            self.current[1] + self.wave_vel[1],
+            self.current[2] + self.wave_vel[2],
+        ]
+    }
+
+    /// True if the point is under the instantaneous surface.
+    pub fn is_wet(&self) -> bool {
+        self.submergence >= 0.0
+    }
+}
+
+/// Which solve asks: statics use the full current (if `in_static`) and no waves; dynamics use
+/// the ramps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// Static equilibrium: R = 1 for the current, no waves.
+    Static,
+    /// Dynamic run at time t.
+    Dynamic,
+}
+
+/// The waves of a sea.
+#[derive(Debug, Clone)]
+pub enum Waves {
+    /// Still water.
+    None,
+    /// A sum of linear components (a regular Airy wave, listed components, or an irregular sea).
+    Linear {
+        /// The components.
+        sum: LinearSum,
+        /// How kinematics are evaluated near the surface.
+        stretching: Stretching,
+        /// The wave ramp.
+        ramp: Ramp,
+    },
+    /// A Stokes second-order regular wave.
+    Stokes2 {
+        /// The wave.
+        wave: Stokes2,
+        /// How kinematics are evaluated near the surface.
+        stretching: Stretching,
+        /// The wave ramp.
+        ramp: Ramp,
+    },
+}
+
+impl Waves {
+    /// True unless still water.
+    pub fn is_active(&self) -> bool {
+        !matches!(self, Waves::None)
+    }
+
+    fn ramp(&self) -> Ramp {
+        match self {
+            Waves::None => Ramp::off(),
+            Waves::Linear { ramp, .. } | Waves::Stokes2 { ramp, .. } => *ramp,
+        }
+    }
+}
+
+thread_local! {
+    /// Per-thread (cos θ_i, sin θ_i) scratch: grows once, then no allocation per call.
+    static PHASES: RefCell<Vec<(f64, f64)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Points × components above which [`Sea::eval`] splits the work over threads.
+const PARALLEL_WORK: usize = 40_000;
+
+/// An immutable sea state: `Send + Sync`, evaluation is a pure function of (x, t).
+#[derive(Debug)]
+pub struct Sea {
+    constants: Constants,
+    current: Current,
+    waves: Waves,
+    current_ramp: bool,
+    below_seabed: AtomicBool,
+}
+
+impl Clone for Sea {
+    fn clone(&self) -> Self {
+        Self {
+            constants: self.constants,
+            current: self.current.clone(),
+            waves: self.waves.clone(),
+            current_ramp: self.current_ramp,
+            below_seabed: AtomicBool::new(self.below_seabed.load(Ordering::Relaxed)),
+        }
+    }
+}
+
+impl Sea {
+    /// A sea from its parts. The current's start-up ramp is off until
+    /// [`Sea::with_current_ramp`] switches it on.
+    pub fn new(constants: Constants, current: Current, waves: Waves) -> Self {
+        Self {
+            constants,
+            current,
+            waves,
+            current_ramp: false,
+            below_seabed: AtomicBool::new(false),
+        }
+    }
+
+    /// Still water with the given constants.
+    pub fn still(constants: Constants) -> Self {
+        Self::new(constants, Current::none(), Waves::None)
+    }
+
+    /// Use the current's start-up ramp in dynamics: for runs that do not start from a static
+    /// state which already contains the current (environment spec §4.4).
+    pub fn with_current_ramp(mut self, on: bool) -> Self {
+        self.current_ramp = on;
+        self
+    }
+
+    /// True if the current ramps up in dynamics.
+    pub fn current_ramps(&self) -> bool {
+        self.current_ramp && self.current.ramp.duration > 0.0
+    }
+
+    /// g, ρ_w, ν and the depth.
+    pub fn constants(&self) -> &Constants {
+        &self.constants
+    }
+
+    /// Gravity g [m/s²].
+    pub fn gravity(&self) -> f64 {
+        self.constants.gravity
+    }
+
+    /// Water density ρ_w [kg/m³].
+    pub fn density(&self) -> f64 {
+        self.constants.density
+    }
+
+    /// Kinematic viscosity ν [m²/s].
+    pub fn kinematic_viscosity(&self) -> f64 {
+        self.constants.kinematic_viscosity
+    }
+
+    /// Water depth.
+    pub fn depth(&self) -> Depth {
+        self.constants.depth
+    }
+
+    /// The current.
+    pub fn current(&self) -> &Current {
+        &self.current
+    }
+
+    /// The waves.
+    pub fn waves(&self) -> &Waves {
+        &self.waves
+    }
+
+    /// True if the sea has waves (a current-only sea costs nothing for waves).
+    pub fn has_waves(&self) -> bool {
+        self.waves.is_active()
+    }
+
+    /// True if the sea has a current.
+    pub fn has_current(&self) -> bool {
+        self.current.is_active()
+    }
+
+    /// True once any evaluated point was below the seabed (warn once per run).
+    pub fn saw_point_below_seabed(&self) -> bool {
+        self.below_seabed.load(Ordering::Relaxed)
+    }
+
+    /// Surface elevation η [m] at (x, y) and t (zero in statics).
+    pub fn elevation(&self, x: f64, y: f64, t: f64, phase: Phase) -> f64 {
+        if phase == Phase::Static {
+            return 0.0;
+        }
+        let r = self.waves.ramp().value(t);
+        match &self.waves {
+            Waves::None => 0.0,
+            Waves::Linear { sum, .. } => r * sum.elevation_only(x, y, t),
+            Waves::Stokes2 { wave, .. } => r * wave.elevation(x, y, t),
+        }
+    }
+
+    /// Everything at one point p = (x, y, z) [m] and time t [s].
+    pub fn at(&self, p: [f64; 3], t: f64, phase: Phase) -> FlowPoint {
+        match &self.waves {
+            Waves::Linear { sum, .. } if phase == Phase::Dynamic => PHASES.with(|cell| {
+                let mut cs = cell.borrow_mut();
+                if cs.len() < sum.len() {
+                    cs.resize(sum.len(), (0.0, 0.0));
+                }
+                self.at_with(p, t, phase, &mut cs)
+            }),
+            _ => self.at_with(p, t, phase, &mut []),
+        }
+    }
+
+    fn at_with(&self, p: [f64; 3], t: f64, phase: Phase, cs: &mut [(f64, f64)]) -> FlowPoint {
+        let [x, y, z] = p;
+        let mut out = FlowPoint::default();
+        if let Depth::Finite(h) = self.constants.depth
+            && z < -h
+        {
+            self.below_seabed.store(true, Ordering::Relaxed);
+            out.submergence = -z;
+            return out;
+        }
+        // Waves first: they decide where the surface is.
+        let mut wave = RawKinematics::default();
+        if phase == Phase::Dynamic {
+            let ramp = self.waves.ramp();
+            let (r, rdot) = (ramp.value(t), ramp.rate(t));
+            let raw = match &self.waves {
+                Waves::None => None,
+                Waves::Linear {
+                    sum, stretching, ..
+                } => {
+                    let eta = r * sum.elevation(x, y, t, cs);
+                    out.eta = eta;
+                    (z <= eta).then(|| {
+                        let zs = stretching.apply(z, eta, self.constants.depth);
+                        sum.kinematics(zs, cs)
+                    })
+                }
+                Waves::Stokes2 {
+                    wave, stretching, ..
+                } => {
+                    let eta = r * wave.elevation(x, y, t);
+                    out.eta = eta;
+                    (z <= eta).then(|| {
+                        let zs = stretching.apply(z, eta, self.constants.depth);
+                        wave.kinematics(x, y, t, zs)
+                    })
+                }
+            };
+            if let Some(k) = raw {
+                for c in 0..3 {
+                    wave.vel[c] = r * k.vel[c];
+                    wave.acc[c] = r * k.acc[c] + rdot * k.vel[c];
+                }
+                wave.p_over_rho = r * k.p_over_rho;
+            }
+        }
+        out.submergence = out.eta - z;
+        if z > out.eta {
+            return out;
+        }
+        out.wave_vel = wave.vel;
+        out.wave_acc = wave.acc;
+        out.p_dyn = self.constants.density * wave.p_over_rho;
+        if self.current.is_active() {
+            let (r, rdot, tc) = match phase {
+                Phase::Static => (if self.current.in_static { 1.0 } else { 0.0 }, 0.0, 0.0),
+                Phase::Dynamic if self.current_ramp => {
+                    (self.current.ramp.value(t), self.current.ramp.rate(t), t)
+                }
+                Phase::Dynamic => (1.0, 0.0, t),
+            };
+            if r != 0.0 || rdot != 0.0 {
+                let (u, a) = self.current.eval(z, tc, r, rdot);
+                out.current = u;
+                out.current_acc = a;
+            }
+        }
+        out
+    }
+
+    /// Fills `out[i]` with the flow at `points[i]` [m] at time t [s].
+    ///
+    /// No allocation per call after the first on each thread; large batches run in parallel
+    /// (the per-point summation order is fixed, so results do not depend on thread count).
+    ///
+    /// # Panics
+    /// If `points` and `out` differ in length (a programming error, not user input).
+    pub fn eval(&self, t: f64, phase: Phase, points: &[[f64; 3]], out: &mut [FlowPoint]) {
+        assert_eq!(points.len(), out.len(), "points and out must have equal length");
+        let ncomp = match &self.waves {
+            Waves::Linear { sum, .. } => sum.len().max(1),
+            _ => 1,
+        };
+        if points.len() * ncomp < PARALLEL_WORK {
+            for (p, o) in points.iter().zip(out.iter_mut()) {
+                *o = self.at(*p, t, phase);
+            }
+        } else {
+            let chunk = (PARALLEL_WORK / ncomp).max(16);
+            points
+                .par_chunks(chunk)
+                .zip(out.par_chunks_mut(chunk))
+                .for_each(|(ps, os)| {
+                    for (p, o) in ps.iter().zip(os.iter_mut()) {
+                        *o = self.at(*p, t, phase);
+                    }
+                });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::airy::Component;
+
+    fn airy_sea(h: f64, stretching: Stretching) -> Sea {
+        let c = Constants {
+            gravity: 9.81,
+            ..Constants::with_depth(h)
+        };
+        let comp = Component::new(1.0, 8.0, 0.3, 0.2, c.depth, c.gravity).unwrap();
+        Sea::new(
+            c,
+            Current::none(),
+            Waves::Linear {
+                sum: LinearSum::new(vec![comp], c.depth, c.gravity),
+                stretching,
+                ramp: Ramp::off(),
+            },
+        )
+    }
+
+    #[test]
+    fn statics_see_no_waves_and_full_current() {
+        let mut sea = airy_sea(50.0, Stretching::None);
+        sea.current = Current {
+            ramp: Ramp::new(10.0),
+            ..Current::uniform([0.5, 0.0, 0.0])
+        };
+        let sea = sea.with_current_ramp(true);
+        let f = sea.at([0.0, 0.0, -5.0], 0.0, Phase::Static);
+        assert_eq!(f.wave_vel, [0.0; 3]);
+        assert_eq!(f.current, [0.5, 0.0, 0.0]);
+        let f = sea.at([0.0, 0.0, -5.0], 5.0, Phase::Dynamic);
+        assert!((f.current[0] - 0.25).abs() < 1e-15 && f.current[1] == 0.0);
+        assert!(f.current_acc[0] > 0.0);
+    }
+
+    #[test]
+    fn zero_above_surface_every_stretching() {
+        for st in [Stretching::None, Stretching::Vertical, Stretching::Wheeler] {
+            let sea = airy_sea(40.0, st);
+            for i in 0..50 {
+                let t = i as f64 * 0.37;
+                let eta = sea.elevation(3.0, -2.0, t, Phase::Dynamic);
+                let f = sea.at([3.0, -2.0, eta + 1e-6], t, Phase::Dynamic);
+                assert_eq!(f.wave_vel, [0.0; 3]);
+                assert_eq!(f.wave_acc, [0.0; 3]);
+                assert_eq!(f.p_dyn, 0.0);
+                assert!(f.submergence < 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn below_seabed_is_zero_and_flagged() {
+        let sea = airy_sea(40.0, Stretching::None);
+        let f = sea.at([0.0, 0.0, -41.0], 1.0, Phase::Dynamic);
+        assert_eq!(f.wave_vel, [0.0; 3]);
+        assert!(sea.saw_point_below_seabed());
+    }
+
+    #[test]
+    fn eval_matches_at_serial_and_parallel() {
+        let sea = airy_sea(40.0, Stretching::Wheeler);
+        let pts: Vec<[f64; 3]> = (0..50_000)
+            .map(|i| [i as f64 * 0.01, 0.0, -(i % 30) as f64])
+            .collect();
+        let mut out = vec![FlowPoint::default(); pts.len()];
+        sea.eval(2.0, Phase::Dynamic, &pts, &mut out);
+        for i in (0..pts.len()).step_by(997) {
+            assert_eq!(out[i], sea.at(pts[i], 2.0, Phase::Dynamic));
+        }
+    }
+}
