@@ -1,0 +1,688 @@
+//! Implicit dynamics: HHT-α with Newton every step and adaptive step halving (fem.md §10–11).
+
+use crate::error::{FemError, Result, invalid};
+use crate::loads::LoadProvider;
+use crate::model::Model;
+use crate::state::{Outputs, State};
+use crate::system::{Coef, EvalOptions, NONE, System};
+use serde::{Deserialize, Serialize};
+
+/// Mass matrix of the cable elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum MassMatrix {
+    /// μL0/2 on each node (default).
+    #[default]
+    Lumped,
+    /// μL0/6·[2I, I; I, 2I].
+    Consistent,
+}
+
+/// Settings of the HHT-α integrator (scene keys of `[analysis.dynamic]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DynamicSettings {
+    /// α ∈ [0, 1/3] (our convention; α = 0 is the trapezoidal rule). Default 0.3.
+    pub alpha: f64,
+    /// Nominal (and largest) step Δt [s].
+    pub dt: f64,
+    /// End time [s].
+    pub t_end: f64,
+    /// Smallest step before failing [s]; default dt/1024.
+    pub dt_min: Option<f64>,
+    /// Relative residual tolerance ε_r. Default 1e-5.
+    pub tol: f64,
+    /// Newton iterations per step. Default 15.
+    pub max_iter: usize,
+    /// Mass matrix. Default lumped.
+    pub mass_matrix: MassMatrix,
+    /// Rayleigh damping [a_M (1/s), a_K (s)]: C += a_M·M + a_K·K_material. Default none.
+    pub rayleigh: [f64; 2],
+    /// Steps are shortened to land on multiples of this interval [s] (flagged in the report).
+    pub output_interval: Option<f64>,
+    /// Largest |strain| accepted in a step. Default 1.0.
+    pub max_strain: f64,
+    /// Form missing water-load position derivatives by finite differences. Default false
+    /// (the provider's ∂f/∂x is used when given; ∂f/∂v is always formed).
+    pub fd_position_jacobian: bool,
+}
+
+impl DynamicSettings {
+    /// Defaults with step dt [s] and end time t_end [s].
+    pub fn new(dt: f64, t_end: f64) -> Self {
+        Self {
+            alpha: 0.3,
+            dt,
+            t_end,
+            dt_min: None,
+            tol: 1e-5,
+            max_iter: 15,
+            mass_matrix: MassMatrix::Lumped,
+            rayleigh: [0.0, 0.0],
+            output_interval: None,
+            max_strain: 1.0,
+            fd_position_jacobian: false,
+        }
+    }
+
+    /// α from the spectral radius at infinite frequency ρ∞ ∈ [0.5, 1]: α = (1 − ρ∞)/(1 + ρ∞).
+    pub fn alpha_from_rho_inf(rho_inf: f64) -> Result<f64> {
+        if !(0.5..=1.0).contains(&rho_inf) {
+            return Err(invalid(
+                "rho_inf",
+                rho_inf,
+                "0.5 <= rho_inf <= 1 (equivalently alpha in [0, 1/3], or Code_Aster/HHT ALPHA in [-1/3, 0])",
+            ));
+        }
+        Ok((1.0 - rho_inf) / (1.0 + rho_inf))
+    }
+
+    /// α from the original HHT / Code_Aster convention α_neg ∈ [−1/3, 0]: α = −α_neg.
+    pub fn alpha_from_negative(alpha_neg: f64) -> Result<f64> {
+        if !(-1.0 / 3.0 - 1e-15..=0.0).contains(&alpha_neg) {
+            return Err(invalid(
+                "HHT ALPHA (negative convention)",
+                alpha_neg,
+                "-1/3 <= ALPHA <= 0 (equivalently alpha in [0, 1/3] or rho_inf in [0.5, 1])",
+            ));
+        }
+        Ok(-alpha_neg)
+    }
+
+    fn validate(&self) -> Result<()> {
+        if !(0.0..=1.0 / 3.0 + 1e-15).contains(&self.alpha) {
+            return Err(invalid(
+                "alpha",
+                self.alpha,
+                "0 <= alpha <= 1/3 (equivalently rho_inf in [0.5, 1], or Code_Aster/HHT ALPHA in [-1/3, 0])",
+            ));
+        }
+        if !(self.dt.is_finite() && self.dt > 0.0) {
+            return Err(invalid("dt [s]", self.dt, "> 0"));
+        }
+        if !self.t_end.is_finite() {
+            return Err(invalid("t_end [s]", self.t_end, "finite"));
+        }
+        if let Some(m) = self.dt_min
+            && !(m > 0.0 && m <= self.dt)
+        {
+            return Err(invalid(
+                "dt_min [s]",
+                m,
+                format!("0 < dt_min <= dt = {}", self.dt),
+            ));
+        }
+        if !(self.tol > 0.0 && self.tol < 1.0) {
+            return Err(invalid("dynamic tol", self.tol, "0 < tol < 1"));
+        }
+        if self.max_iter == 0 {
+            return Err(invalid("dynamic max_iter", 0.0, ">= 1"));
+        }
+        for (i, r) in self.rayleigh.iter().enumerate() {
+            if !(r.is_finite() && *r >= 0.0) {
+                return Err(invalid(format!("rayleigh[{i}]"), *r, ">= 0"));
+            }
+        }
+        if let Some(o) = self.output_interval
+            && !(o.is_finite() && o > 0.0)
+        {
+            return Err(invalid("output_interval [s]", o, "> 0"));
+        }
+        if !(self.max_strain > 0.0) {
+            return Err(invalid("max_strain", self.max_strain, "> 0"));
+        }
+        Ok(())
+    }
+}
+
+/// Energy balance since the start of the run [J]:
+/// W_ext + W_sup = ΔE_k + ΔU + D + E_num.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Energies {
+    /// Kinetic energy ½vᵀ(M + M_added)v now.
+    pub kinetic: f64,
+    /// Strain energy ΣU_e now.
+    pub strain: f64,
+    /// Work of external forces (gravity, point, water, seabed) since the start.
+    pub external_work: f64,
+    /// Work of the support reactions since the start.
+    pub support_work: f64,
+    /// Energy dissipated by axial and Rayleigh damping since the start.
+    pub damping_dissipation: f64,
+    /// Numerical dissipation E_num (≈ 0 for α = 0).
+    pub numerical_dissipation: f64,
+}
+
+/// What one accepted step did.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepReport {
+    /// Time reached [s].
+    pub t: f64,
+    /// Step used [s].
+    pub dt: f64,
+    /// Newton iterations (factorisations) of the accepted attempt (0 for explicit schemes).
+    pub iterations: usize,
+    /// Failed attempts (step halvings) before acceptance.
+    pub retries: usize,
+    /// ‖r_k‖/F_ref per iteration of the accepted attempt.
+    pub residual_history: Vec<f64>,
+    /// Observed order log(r_{k+1}/F)/log(r_k/F) of the last two iterations, if available.
+    pub convergence_order: Option<f64>,
+    /// The step landed on an output time (a multiple of `output_interval`) or the end.
+    pub output_time: bool,
+    /// Energy balance.
+    pub energies: Energies,
+}
+
+struct Attempt {
+    reason: String,
+    history: Vec<f64>,
+}
+
+/// HHT-α time integrator; advance with [`step`](Self::step) and read results after each step.
+#[derive(Debug)]
+pub struct DynamicSolver<'m> {
+    model: &'m Model,
+    st: DynamicSettings,
+    sys: System,
+    state: State,
+    x1: Vec<[f64; 3]>,
+    v1: Vec<[f64; 3]>,
+    a1: Vec<[f64; 3]>,
+    q_prev: Vec<[f64; 3]>,
+    fext_prev: Vec<[f64; 3]>,
+    power_prev: f64,
+    outputs: Outputs,
+    r: Vec<f64>,
+    dx: Vec<f64>,
+    dt_cur: f64,
+    good_steps: usize,
+    energies: Energies,
+    e0: f64,
+    f_floor: f64,
+    n_steps: usize,
+    total_iterations: usize,
+    last_reaction: Vec<[f64; 3]>,
+}
+
+impl<'m> DynamicSolver<'m> {
+    /// Prepares the integrator from `initial` (e.g. a static solution's state) or, if `None`,
+    /// from the as-built geometry at rest at t = 0. Computes a₀ from M·a₀ = −q(x₀, v₀, t₀).
+    pub fn new<P: LoadProvider + ?Sized>(
+        model: &'m Model,
+        settings: DynamicSettings,
+        initial: Option<&State>,
+        provider: &mut P,
+    ) -> Result<Self> {
+        settings.validate()?;
+        let sys = System::new(model, &*provider)?;
+        let n = model.n_nodes();
+        let mut state = match initial {
+            Some(s) => {
+                if s.x.len() != n || s.v.len() != n || s.a.len() != n {
+                    return Err(FemError::InvalidModel(format!(
+                        "initial state has {} nodes, the model {n}",
+                        s.x.len()
+                    )));
+                }
+                if s.x.iter().chain(&s.v).flatten().any(|c| !c.is_finite()) || !s.t.is_finite() {
+                    return Err(FemError::NonFinite("initial state".into()));
+                }
+                s.clone()
+            }
+            None => State::as_built(model, 0.0),
+        };
+        if settings.t_end < state.t {
+            return Err(invalid(
+                "t_end [s]",
+                settings.t_end,
+                format!(">= start time {}", state.t),
+            ));
+        }
+        for i in 0..n {
+            let free = (0..3).any(|k| !model.is_constrained(i, k));
+            if free && model.lumped_mass[i] <= 0.0 {
+                return Err(FemError::InvalidModel(format!(
+                    "node {i} has free DOFs but no mass (give it an element or a point mass)"
+                )));
+            }
+        }
+        let mut a = std::mem::take(&mut state.a);
+        model.apply_constraints(state.t, 1.0, &mut state.x, &mut state.v, &mut a);
+        state.a = a;
+        let max_ea = model.elements().iter().map(|e| e.ea).fold(0.0, f64::max);
+        let wsum: f64 = model.weight.iter().map(|w| w[2].abs()).sum();
+        let nf = sys.n_free();
+        let mut s = Self {
+            model,
+            dt_cur: settings.dt,
+            st: settings,
+            sys,
+            x1: state.x.clone(),
+            v1: state.v.clone(),
+            a1: state.a.clone(),
+            state,
+            q_prev: vec![[0.0; 3]; n],
+            fext_prev: vec![[0.0; 3]; n],
+            power_prev: 0.0,
+            outputs: Outputs::new(model),
+            r: vec![0.0; nf],
+            dx: vec![0.0; nf],
+            good_steps: 0,
+            energies: Energies::default(),
+            e0: 0.0,
+            f_floor: (1e-6 * wsum).max(1e-9 * max_ea).max(1e-12),
+            n_steps: 0,
+            total_iterations: 0,
+            last_reaction: vec![[0.0; 3]; n],
+        };
+        // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
+        for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
+            let _ = f;
+            s.state.a[gd / 3][gd % 3] = 0.0;
+        }
+        let o = s.opts(
+            Some(Coef {
+                m: 1.0,
+                k: 0.0,
+                c: 0.0,
+            }),
+            s.state.t,
+        );
+        s.sys
+            .evaluate(model, provider, &s.state.x, &s.state.v, &s.state.a, &o)?;
+        for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
+            s.dx[f] = -s.sys.q[gd / 3][gd % 3] - s.sys.ma[gd / 3][gd % 3];
+        }
+        s.sys.factorize()?;
+        s.sys.solve(&mut s.dx)?;
+        for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
+            s.state.a[gd / 3][gd % 3] = s.dx[f];
+        }
+        let o = s.opts(None, s.state.t);
+        s.sys
+            .evaluate(model, provider, &s.state.x, &s.state.v, &s.state.a, &o)?;
+        s.accept_bookkeeping(0.0, true);
+        s.e0 = s.energies.kinetic + s.energies.strain;
+        Ok(s)
+    }
+
+    fn opts(&self, jacobian: Option<Coef>, t: f64) -> EvalOptions {
+        EvalOptions {
+            t,
+            load_scale: 1.0,
+            dynamic: true,
+            jacobian,
+            inertia: true,
+            consistent_mass: self.st.mass_matrix == MassMatrix::Consistent,
+            rayleigh: (self.st.rayleigh[0], self.st.rayleigh[1]),
+            fd_dfdx: self.st.fd_position_jacobian,
+        }
+    }
+
+    /// Current state (after the last accepted step).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+    /// Element tensions, strains, reactions, seabed and water forces of the current state.
+    pub fn outputs(&self) -> &Outputs {
+        &self.outputs
+    }
+    /// Current time [s].
+    pub fn time(&self) -> f64 {
+        self.state.t
+    }
+    /// Whether t_end has been reached.
+    pub fn is_finished(&self) -> bool {
+        self.state.t >= self.st.t_end - 1e-9 * self.st.dt
+    }
+    /// Accepted steps so far.
+    pub fn n_steps(&self) -> usize {
+        self.n_steps
+    }
+    /// Newton iterations (factorisations) of accepted steps so far.
+    pub fn total_iterations(&self) -> usize {
+        self.total_iterations
+    }
+    /// Energy balance of the current state.
+    pub fn energies(&self) -> Energies {
+        self.energies
+    }
+    /// Settings.
+    pub fn settings(&self) -> &DynamicSettings {
+        &self.st
+    }
+
+    /// Updates outputs and energies from the last evaluation (at the new state).
+    fn accept_bookkeeping(&mut self, h: f64, first: bool) {
+        let model = self.model;
+        self.outputs.update(model, &self.sys, true);
+        let n = model.n_nodes();
+        // Kinetic energy with structural + added mass.
+        let mut mv = vec![[0.0; 3]; n];
+        crate::system::mul_mass(
+            model,
+            self.st.mass_matrix == MassMatrix::Consistent,
+            &self.state.v,
+            &mut mv,
+        );
+        let mut ek = 0.0;
+        for i in 0..n {
+            for k in 0..3 {
+                let mut m = mv[i][k];
+                for l in 0..3 {
+                    m += self.sys.added[i][k][l] * self.state.v[i][l];
+                }
+                ek += 0.5 * self.state.v[i][k] * m;
+            }
+        }
+        let u = self.outputs.strain_energy(model);
+        // Dissipated power: axial/Rayleigh-K damping and Rayleigh-M.
+        let mut power = 0.0;
+        for (e, c) in model.elements().iter().zip(&self.sys.cable) {
+            let ca = e.ca + self.st.rayleigh[1] * e.ea;
+            power += c.switch * ca * c.strain_rate * c.strain_rate * e.l0;
+        }
+        if self.st.rayleigh[0] > 0.0 {
+            let mut ms = 0.0;
+            for i in 0..n {
+                for k in 0..3 {
+                    ms += self.state.v[i][k] * mv[i][k];
+                }
+            }
+            power += self.st.rayleigh[0] * ms;
+        }
+        if !first {
+            let mut wext = 0.0;
+            let mut wsup = 0.0;
+            for i in 0..n {
+                for k in 0..3 {
+                    let dx = self.state.x[i][k] - self.x1[i][k];
+                    wext += 0.5 * (self.fext_prev[i][k] + self.sys.fext[i][k]) * dx;
+                    wsup += 0.5 * (self.last_reaction[i][k] + self.outputs.reaction[i][k]) * dx;
+                }
+            }
+            self.energies.external_work += wext;
+            self.energies.support_work += wsup;
+            self.energies.damping_dissipation += 0.5 * (self.power_prev + power) * h;
+        }
+        self.energies.kinetic = ek;
+        self.energies.strain = u;
+        self.energies.numerical_dissipation = self.energies.external_work
+            + self.energies.support_work
+            - (ek + u - self.e0)
+            - self.energies.damping_dissipation;
+        self.power_prev = power;
+        self.q_prev.copy_from_slice(&self.sys.q);
+        self.fext_prev.copy_from_slice(&self.sys.fext);
+        self.last_reaction.copy_from_slice(&self.outputs.reaction);
+    }
+
+    /// Takes one accepted step (halving Δt on failure down to `dt_min`), landing on output
+    /// times and on t_end. Returns an error if the step cannot be completed; the state is then
+    /// the last converged one.
+    pub fn step<P: LoadProvider + ?Sized>(&mut self, provider: &mut P) -> Result<StepReport> {
+        if self.is_finished() {
+            return Err(FemError::InvalidModel(format!(
+                "step requested after t_end = {}",
+                self.st.t_end
+            )));
+        }
+        let dt_min = self.st.dt_min.unwrap_or(self.st.dt / 1024.0);
+        let t = self.state.t;
+        let mut retries = 0;
+        loop {
+            let mut h = self.dt_cur;
+            let mut target = self.st.t_end;
+            if let Some(oi) = self.st.output_interval {
+                let k = ((t + 1e-9 * self.st.dt) / oi).floor() + 1.0;
+                target = target.min(k * oi);
+            }
+            let mut landed = false;
+            if t + h >= target - 1e-9 * self.st.dt {
+                h = target - t;
+                landed = true;
+            }
+            match self.attempt(provider, h) {
+                Ok((iters, hist)) => {
+                    self.total_iterations += iters;
+                    self.n_steps += 1;
+                    std::mem::swap(&mut self.state.x, &mut self.x1);
+                    std::mem::swap(&mut self.state.v, &mut self.v1);
+                    std::mem::swap(&mut self.state.a, &mut self.a1);
+                    self.state.t = if landed { target } else { t + h };
+                    // x1 now holds x_n (for the work increments).
+                    self.accept_bookkeeping(h, false);
+                    if iters <= 4 {
+                        self.good_steps += 1;
+                        if self.good_steps >= 4 && self.dt_cur < self.st.dt {
+                            self.dt_cur = (2.0 * self.dt_cur).min(self.st.dt);
+                            self.good_steps = 0;
+                        }
+                    } else {
+                        self.good_steps = 0;
+                    }
+                    let order = if hist.len() >= 3 {
+                        let k = hist.len() - 1;
+                        let (a, b) = (hist[k - 1], hist[k]);
+                        (a > 0.0 && b > 0.0 && a < 1.0).then(|| b.ln() / a.ln())
+                    } else {
+                        None
+                    };
+                    let on_output = self.st.output_interval.is_none() || landed;
+                    return Ok(StepReport {
+                        t: self.state.t,
+                        dt: h,
+                        iterations: iters,
+                        retries,
+                        residual_history: hist,
+                        convergence_order: order,
+                        output_time: on_output,
+                        energies: self.energies,
+                    });
+                }
+                Err(fail) => {
+                    retries += 1;
+                    self.good_steps = 0;
+                    self.dt_cur = 0.5 * h.min(self.dt_cur);
+                    if self.dt_cur < dt_min {
+                        return Err(self.step_failure(provider, h, dt_min, fail));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Runs to t_end, calling `on_step` after every accepted step; stops early (Ok) when the
+    /// callback returns false.
+    pub fn run<P: LoadProvider + ?Sized, F: FnMut(&Self, &StepReport) -> bool>(
+        &mut self,
+        provider: &mut P,
+        mut on_step: F,
+    ) -> Result<()> {
+        while !self.is_finished() {
+            let rep = self.step(provider)?;
+            if !on_step(self, &rep) {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// One Newton solve of the HHT-α residual for a step h. On success x1, v1, a1 hold the new
+    /// state and `sys` its evaluation.
+    fn attempt<P: LoadProvider + ?Sized>(
+        &mut self,
+        provider: &mut P,
+        h: f64,
+    ) -> std::result::Result<(usize, Vec<f64>), Attempt> {
+        let model = self.model;
+        let alpha = self.st.alpha;
+        let beta = 0.25 * (1.0 + alpha) * (1.0 + alpha);
+        let gamma = 0.5 + alpha;
+        let t1 = self.state.t + h;
+        let n = model.n_nodes();
+        // Predictor.
+        for i in 0..n {
+            for k in 0..3 {
+                let (x, v, a) = (self.state.x[i][k], self.state.v[i][k], self.state.a[i][k]);
+                self.x1[i][k] = x + h * v + 0.5 * h * h * a;
+            }
+        }
+        model.apply_constraints(t1, 1.0, &mut self.x1, &mut self.v1, &mut self.a1);
+        let coef = Coef {
+            m: 1.0 / (beta * h * h),
+            k: 1.0 - alpha,
+            c: (1.0 - alpha) * gamma / (beta * h),
+        };
+        let o = self.opts(Some(coef), t1);
+        let xtol = 1e-6 * model.mean_length;
+        let mut hist = Vec::new();
+        let mut dx_prev = f64::INFINITY;
+        let mut r0 = f64::NAN;
+        let fail = |reason: String, hist: &Vec<f64>| Attempt {
+            reason,
+            history: hist.clone(),
+        };
+        for it in 0..self.st.max_iter {
+            // Newmark kinematics on free DOFs.
+            for &gd in &self.sys.dof_of_free {
+                let (i, k) = (gd / 3, gd % 3);
+                let (xn, vn, an) = (self.state.x[i][k], self.state.v[i][k], self.state.a[i][k]);
+                let a = (self.x1[i][k] - xn - h * vn) / (beta * h * h)
+                    - (1.0 / (2.0 * beta) - 1.0) * an;
+                self.a1[i][k] = a;
+                self.v1[i][k] = vn + h * ((1.0 - gamma) * an + gamma * a);
+            }
+            if let Err(e) = self
+                .sys
+                .evaluate(model, provider, &self.x1, &self.v1, &self.a1, &o)
+            {
+                return Err(fail(e.to_string(), &hist));
+            }
+            if let Some(c) = self
+                .sys
+                .cable
+                .iter()
+                .find(|c| c.strain.abs() > self.st.max_strain)
+            {
+                return Err(fail(
+                    format!(
+                        "strain {:.3e} beyond max_strain {}",
+                        c.strain, self.st.max_strain
+                    ),
+                    &hist,
+                ));
+            }
+            let mut rn = 0.0;
+            for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+                let (i, k) = (gd / 3, gd % 3);
+                let r = self.sys.ma[i][k]
+                    + (1.0 - alpha) * self.sys.q[i][k]
+                    + alpha * self.q_prev[i][k];
+                self.r[f] = r;
+                rn += r * r;
+            }
+            let rn = rn.sqrt();
+            let f_ref = self.f_ref();
+            hist.push(rn / f_ref);
+            if !rn.is_finite() {
+                return Err(fail("non-finite residual".into(), &hist));
+            }
+            if it == 0 {
+                r0 = rn;
+            } else if rn > 1e4 * r0 && rn > self.st.tol * f_ref {
+                return Err(fail("residual grew by more than 1e4".into(), &hist));
+            }
+            let tol = self.st.tol * f_ref;
+            if it > 0 && rn <= tol && dx_prev <= xtol {
+                return Ok((it, hist));
+            }
+            if let Err(e) = self.sys.factorize() {
+                return Err(fail(e.to_string(), &hist));
+            }
+            for f in 0..self.r.len() {
+                self.dx[f] = -self.r[f];
+            }
+            if let Err(e) = self.sys.solve(&mut self.dx) {
+                return Err(fail(e.to_string(), &hist));
+            }
+            let dinf = self.dx.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            if rn <= tol && dinf <= xtol {
+                return Ok((it + 1, hist));
+            }
+            for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+                self.x1[gd / 3][gd % 3] += self.dx[f];
+            }
+            dx_prev = dinf;
+        }
+        Err(fail(
+            format!("no convergence in {} Newton iterations", self.st.max_iter),
+            &hist,
+        ))
+    }
+
+    /// F_ref = max(‖f_ext‖₂, ‖R‖₂, ‖M·a‖₂, floor) from the last evaluation.
+    fn f_ref(&self) -> f64 {
+        let mut fe = 0.0;
+        let mut re = 0.0;
+        let mut ine = 0.0;
+        for i in 0..self.model.n_nodes() {
+            for k in 0..3 {
+                fe += self.sys.fext[i][k].powi(2);
+                ine += self.sys.ma[i][k].powi(2);
+                if self.sys.free_of_dof[3 * i + k] == NONE {
+                    re += (self.sys.q[i][k] + self.sys.ma[i][k]).powi(2);
+                }
+            }
+        }
+        fe.sqrt().max(re.sqrt()).max(ine.sqrt()).max(self.f_floor)
+    }
+
+    fn step_failure<P: LoadProvider + ?Sized>(
+        &mut self,
+        _provider: &mut P,
+        h: f64,
+        dt_min: f64,
+        fail: Attempt,
+    ) -> FemError {
+        let n = self.model.n_nodes();
+        let mut node_r = vec![0.0; n];
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            node_r[gd / 3] += self.r[f] * self.r[f];
+        }
+        let mut worst = (0usize, -1.0f64);
+        for (i, r) in node_r.iter().enumerate() {
+            let r = if r.is_finite() {
+                r.sqrt()
+            } else {
+                f64::INFINITY
+            };
+            if r > worst.1 {
+                worst = (i, r);
+            }
+        }
+        let mut maxs = (0usize, f64::NEG_INFINITY);
+        let mut mins = (0usize, f64::INFINITY);
+        for (i, c) in self.sys.cable.iter().enumerate() {
+            if c.strain > maxs.1 {
+                maxs = (i, c.strain);
+            }
+            if c.strain < mins.1 {
+                mins = (i, c.strain);
+            }
+        }
+        FemError::StepFailed {
+            t: self.state.t,
+            dt: h,
+            dt_min,
+            reason: fail.reason,
+            worst_node: worst.0,
+            worst_position: self.x1[worst.0],
+            worst_residual: worst.1,
+            max_strain_element: maxs.0,
+            max_strain: maxs.1,
+            min_strain_element: mins.0,
+            min_strain: mins.1,
+            history: fail.history,
+        }
+    }
+}

@@ -1,0 +1,139 @@
+//! Typed errors of the structural model and its solvers.
+
+use thiserror::Error;
+
+/// Everything that can go wrong while building a model or solving it.
+///
+/// Messages name the offending parameter, its value and what would be valid, or, for solver
+/// failures, the time, the node with the largest residual and the residual history.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FemError {
+    /// A parameter is out of its valid range.
+    #[error("invalid {what} = {value}: {valid}")]
+    InvalidParameter {
+        /// Name of the parameter (and where it belongs, e.g. `element 3 unstretched_length`).
+        what: String,
+        /// The value that was given.
+        value: f64,
+        /// What would be valid.
+        valid: String,
+    },
+    /// A node index does not exist.
+    #[error("{what}: node {node} does not exist (the model has {n_nodes} nodes)")]
+    UnknownNode {
+        /// Where the index was used.
+        what: String,
+        /// The bad index.
+        node: usize,
+        /// Number of nodes in the model.
+        n_nodes: usize,
+    },
+    /// Structurally bad model (duplicate constraint, unattached node, empty model, ...).
+    #[error("invalid model: {0}")]
+    InvalidModel(String),
+    /// A connected part of the structure is held by nothing (no fixed/prescribed node, no
+    /// seabed contact, no restoring load): the static problem is singular.
+    #[error(
+        "the part of the structure containing node {first_node} ({n_nodes} nodes) has no fixed or \
+         prescribed node, no seabed contact and no restoring load: it is free-floating and the \
+         static problem is singular; fix a node or add a support"
+    )]
+    Unconstrained {
+        /// Lowest node index of the free component.
+        first_node: usize,
+        /// Number of nodes in the component.
+        n_nodes: usize,
+    },
+    /// The load provider reported an error.
+    #[error("load provider, element {element}: {message}")]
+    Load {
+        /// Load element index (usize::MAX when not element specific).
+        element: usize,
+        /// Provider's message.
+        message: String,
+    },
+    /// The static solver failed.
+    #[error(
+        "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
+         {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
+         residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {history:?}. \
+         Hints: check supports and slack parts, raise `stabilisation`, or use more `load_steps`"
+    )]
+    StaticFailed {
+        /// Load factor that could not be reached.
+        load_factor: f64,
+        /// Last attempted increment.
+        increment: f64,
+        /// Minimum allowed increment.
+        min_increment: f64,
+        /// Why the last attempt failed.
+        reason: String,
+        /// Node with the largest residual.
+        worst_node: usize,
+        /// Its position [m].
+        worst_position: [f64; 3],
+        /// Its residual norm [N].
+        worst_residual: f64,
+        /// Reference force [N].
+        f_ref: f64,
+        /// ‖r‖/F_ref per iteration of the last attempt.
+        history: Vec<f64>,
+    },
+    /// A dynamic step failed down to the minimum step.
+    #[error(
+        "dynamic step failed at t = {t:.6} s with dt = {dt:.3e} s < dt_min = {dt_min:.3e} s: \
+         {reason}; worst node {worst_node} at {worst_position:?} with residual \
+         {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
+         {max_strain:.4e}), most compressed element {min_strain_element} (strain \
+         {min_strain:.4e}); residual history {history:?}. Hints: smaller dt, larger alpha, \
+         check supports and slack parts"
+    )]
+    StepFailed {
+        /// Time of the last converged state [s].
+        t: f64,
+        /// Step that failed [s].
+        dt: f64,
+        /// Minimum step [s].
+        dt_min: f64,
+        /// Why the last attempt failed.
+        reason: String,
+        /// Node with the largest residual.
+        worst_node: usize,
+        /// Its position [m].
+        worst_position: [f64; 3],
+        /// Its residual norm [N].
+        worst_residual: f64,
+        /// Element with the largest strain.
+        max_strain_element: usize,
+        /// Its strain.
+        max_strain: f64,
+        /// Element with the smallest strain.
+        min_strain_element: usize,
+        /// Its strain.
+        min_strain: f64,
+        /// ‖r‖/F_ref per iteration of the last attempt.
+        history: Vec<f64>,
+    },
+    /// The sparse factorisation failed or the system is singular.
+    #[error("linear solve failed: {0}")]
+    Linear(String),
+    /// A non-finite number appeared.
+    #[error("non-finite value in {0}")]
+    NonFinite(String),
+}
+
+/// Error returned by a [`crate::LoadProvider`].
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{0}")]
+pub struct LoadError(pub String);
+
+/// Result alias of this crate.
+pub type Result<T, E = FemError> = std::result::Result<T, E>;
+
+pub(crate) fn invalid(what: impl Into<String>, value: f64, valid: impl Into<String>) -> FemError {
+    FemError::InvalidParameter {
+        what: what.into(),
+        value,
+        valid: valid.into(),
+    }
+}

@@ -1,0 +1,90 @@
+//! # aqua-fem — cable structures in statics and dynamics
+//!
+//! Nets, ropes and moorings as chains of 2-node cable elements with three translational DOF
+//! per node (large displacements, no bending), point bodies on nodes, fixed and prescribed
+//! nodes, and a penalty seabed. Water loads (drag, lift, inertia, buoyancy, added mass) come
+//! from a [`LoadProvider`]; this crate knows only gravity, elasticity, point masses and the
+//! seabed (spec `fem.md`).
+//!
+//! ## Governing equations (SI, z up, z = 0 still water)
+//!
+//! Semi-discrete equation of motion on the free DOFs, unknown **positions** x:
+//!
+//! M·ẍ + q(x, ẋ, t) = 0,  q = f_int(x, ẋ) − f_bed(x, ẋ) − f_ext(x, ẋ, t)
+//!
+//! * Cable element (nodes a, b; L0, EA, r_c, c_a): l = |x_b − x_a|, e = (x_b − x_a)/l,
+//!   ε = (l − L0)/L0, ε̇ = eᵀ(v_b − v_a)/L0, s = 1 if ε > 0 else r_c,
+//!   T = s·(EA·ε + c_a·ε̇), f_int,a = −T·e, f_int,b = +T·e; tangent
+//!   k = s·EA/L0·eeᵀ + T/l·(I − eeᵀ) (+ the small non-symmetric damping term), c = s·c_a/L0·eeᵀ.
+//! * Mass: lumped μL0/2 per node (default) or consistent μL0/6·[2I, I; I, 2I]; point masses and
+//!   the provider's added-mass 3×3 blocks add per node.
+//! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
+//! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
+//! * Water loads f_h(t, x, v) and their Jacobians −∂f_h/∂v (damping) and −∂f_h/∂x (stiffness)
+//!   from the provider, finite differences element by element when a derivative is missing.
+//!
+//! **Statics** ([`solve_static`]): Newton on q(x, 0, t0) + ε_s·D·(x − x_ref) = 0 with load
+//! continuation s ∈ (0, 1], pseudo-viscous stabilisation, step cap and backtracking line
+//! search; converged when ‖r‖₂ ≤ ε_r·F_ref and ‖Δx‖∞ ≤ 1e-6·L_ref.
+//!
+//! **Dynamics** ([`DynamicSolver`], HHT-α, α ∈ [0, 1/3], β = (1 + α)²/4, γ = ½ + α):
+//!
+//! M·a_{n+1} + (1 − α)·q_{n+1} + α·q_n = 0,
+//! a_{n+1} = (x_{n+1} − x_n − Δt·v_n)/(βΔt²) − (1/(2β) − 1)·a_n,
+//! v_{n+1} = v_n + Δt·[(1 − γ)·a_n + γ·a_{n+1}],
+//!
+//! Newton Jacobian J = M/(βΔt²) + (1 − α)·[K + γ/(βΔt)·C], adaptive halving of Δt.
+//!
+//! **Explicit** ([`ExplicitSolver`]): lumped mass, a = M⁻¹(−q), semi-implicit Euler or RK4,
+//! Δt from a Gershgorin bound of the highest axial frequency.
+//!
+//! ## Linear algebra
+//! The free-DOF Jacobian pattern is assembled once; faer's sparse **LU** (COLAMD ordering,
+//! symbolic analysis once per solver, numeric factorisation every Newton iteration) is used
+//! because water-load Jacobians (lift, ∂f/∂x, Reynolds terms) and the damping term of the
+//! cable tangent are not symmetric, and the compressed geometric term makes K indefinite
+//! (spec `fem.md` §13).
+//!
+//! ## Use
+//! ```
+//! use aqua_fem::*;
+//! let mut b = ModelBuilder::new(Environment::default());
+//! let top = b.add_node([0.0, 0.0, 0.0]).unwrap();
+//! let tip = b.add_node([0.0, 0.0, -10.0]).unwrap();
+//! let g = b.add_group("rope", CableSection::new(1e6, 0.5)).unwrap();
+//! b.add_cable(top, tip, g, UnstretchedLength::Given(10.0)).unwrap();
+//! b.add_point_body(PointBody { node: tip, mass: 10.0, force: [0.0; 3], seabed_stiffness: 0.0 }).unwrap();
+//! b.fix(top, Dofs::ALL).unwrap();
+//! let model = b.build().unwrap();
+//! let stat = solve_static(&model, &mut NoLoads, &StaticSettings::default()).unwrap();
+//! let mut dynamic = DynamicSolver::new(&model, DynamicSettings::new(0.01, 0.1), Some(&stat.state), &mut NoLoads).unwrap();
+//! while !dynamic.is_finished() {
+//!     let report = dynamic.step(&mut NoLoads).unwrap();
+//!     let _top_tension = dynamic.outputs().tension[0];
+//!     assert!(report.iterations <= 15);
+//! }
+//! ```
+
+mod cable;
+pub mod dynamics;
+pub mod error;
+pub mod explicit;
+pub mod loads;
+pub mod model;
+pub mod motion;
+pub mod state;
+pub mod statics;
+mod system;
+
+pub use dynamics::{DynamicSettings, DynamicSolver, Energies, MassMatrix, StepReport};
+pub use error::{FemError, LoadError, Result};
+pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
+pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};
+pub use model::{
+    AxialDamping, Cable, CableSection, DEFAULT_COMPRESSION_RATIO, DEFAULT_GRAVITY,
+    DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
+    Seabed, Support, UnstretchedLength,
+};
+pub use motion::{Motion, TableSpline, smooth_ramp};
+pub use state::{Outputs, State};
+pub use statics::{StaticReport, StaticSettings, StaticSolution, solve_static};

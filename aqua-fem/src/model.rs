@@ -1,0 +1,673 @@
+//! The structural model: nodes, cable elements, point bodies, supports, seabed.
+
+use crate::error::{FemError, Result, invalid};
+use crate::motion::{Motion, check_finite3};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// Default gravitational acceleration [m/s²].
+pub const DEFAULT_GRAVITY: f64 = 9.80665;
+/// Default sea-water density [kg/m³].
+pub const DEFAULT_WATER_DENSITY: f64 = 1025.0;
+/// Default compression ratio r_c of cable elements.
+pub const DEFAULT_COMPRESSION_RATIO: f64 = 1e-4;
+
+/// Flat seabed at z = −depth with a penalty contact law (MoorDyn's `kBot`/`cBot`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Seabed {
+    /// Water depth [m] (> 0): the seabed plane is z = −depth.
+    pub depth: f64,
+    /// Normal stiffness k_b per unit contact area [Pa/m]. Default 3e6.
+    pub stiffness: f64,
+    /// Normal damping c_b per unit contact area [Pa·s/m]. Default 3e5.
+    pub damping: f64,
+}
+
+impl Seabed {
+    /// Seabed at depth [m] with the default stiffness and damping.
+    pub fn new(depth: f64) -> Self {
+        Self {
+            depth,
+            stiffness: 3e6,
+            damping: 3e5,
+        }
+    }
+}
+
+/// What the environment passes to the structure.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Environment {
+    /// Gravitational acceleration g [m/s²] (≥ 0).
+    pub gravity: f64,
+    /// Water density ρ_w [kg/m³] (> 0); kept for load providers, the FEM itself adds no water load.
+    pub water_density: f64,
+    /// Seabed, if any.
+    pub seabed: Option<Seabed>,
+}
+
+impl Default for Environment {
+    fn default() -> Self {
+        Self {
+            gravity: DEFAULT_GRAVITY,
+            water_density: DEFAULT_WATER_DENSITY,
+            seabed: None,
+        }
+    }
+}
+
+/// Axial damping of a cable section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub enum AxialDamping {
+    /// No axial damping.
+    #[default]
+    None,
+    /// Axial damping coefficient c_a [N·s] (T = s·(EA·ε + c_a·ε̇)).
+    Coefficient(f64),
+    /// Ratio ζ of critical: c_a = ζ·L0·√(EA·μ) per element.
+    Ratio(f64),
+}
+
+/// Cross-section properties of an element group.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CableSection {
+    /// Axial stiffness EA [N] (> 0).
+    pub ea: f64,
+    /// Mass per unstretched length μ [kg/m] (> 0).
+    pub mass_per_length: f64,
+    /// Compression ratio r_c ∈ [0, 1]: stiffness factor when ε ≤ 0. Default 1e-4.
+    pub compression_ratio: f64,
+    /// Axial damping.
+    pub axial_damping: AxialDamping,
+    /// Seabed contact diameter d_c [m]; `None` disables seabed contact for the group.
+    pub contact_diameter: Option<f64>,
+}
+
+impl CableSection {
+    /// Section with EA [N] and μ [kg/m], default compression ratio, no damping, no contact.
+    pub fn new(ea: f64, mass_per_length: f64) -> Self {
+        Self {
+            ea,
+            mass_per_length,
+            compression_ratio: DEFAULT_COMPRESSION_RATIO,
+            axial_damping: AxialDamping::None,
+            contact_diameter: None,
+        }
+    }
+
+    /// Sets the seabed contact diameter [m].
+    pub fn with_contact(mut self, diameter: f64) -> Self {
+        self.contact_diameter = Some(diameter);
+        self
+    }
+
+    /// Sets the compression ratio r_c.
+    pub fn with_compression_ratio(mut self, rc: f64) -> Self {
+        self.compression_ratio = rc;
+        self
+    }
+
+    /// Sets the axial damping.
+    pub fn with_axial_damping(mut self, d: AxialDamping) -> Self {
+        self.axial_damping = d;
+        self
+    }
+
+    fn validate(&self, group: &str) -> Result<()> {
+        if !(self.ea.is_finite() && self.ea > 0.0) {
+            return Err(invalid(format!("group '{group}' ea [N]"), self.ea, "> 0"));
+        }
+        if !(self.mass_per_length.is_finite() && self.mass_per_length > 0.0) {
+            return Err(invalid(
+                format!("group '{group}' mass_per_length [kg/m]"),
+                self.mass_per_length,
+                "> 0",
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.compression_ratio) {
+            return Err(invalid(
+                format!("group '{group}' compression_ratio"),
+                self.compression_ratio,
+                "0 <= r_c <= 1",
+            ));
+        }
+        match self.axial_damping {
+            AxialDamping::None => {}
+            AxialDamping::Coefficient(c) if c.is_finite() && c >= 0.0 => {}
+            AxialDamping::Ratio(z) if z.is_finite() && z >= 0.0 => {}
+            AxialDamping::Coefficient(c) => {
+                return Err(invalid(
+                    format!("group '{group}' axial_damping [N s]"),
+                    c,
+                    ">= 0",
+                ));
+            }
+            AxialDamping::Ratio(z) => {
+                return Err(invalid(
+                    format!("group '{group}' axial_damping_ratio"),
+                    z,
+                    ">= 0",
+                ));
+            }
+        }
+        if let Some(d) = self.contact_diameter
+            && !(d.is_finite() && d > 0.0)
+        {
+            return Err(invalid(
+                format!("group '{group}' contact_diameter [m]"),
+                d,
+                "> 0",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// How the unstretched length of an element is given.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum UnstretchedLength {
+    /// L0 [m] directly (> 0).
+    Given(f64),
+    /// From the as-built length and an initial tension T0 [N]: L0 = l/(1 + T0/EA).
+    AsBuilt {
+        /// Initial tension T0 [N] (> −EA).
+        initial_tension: f64,
+    },
+}
+
+/// A 2-node cable element (resolved properties).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cable {
+    /// First node.
+    pub a: usize,
+    /// Second node.
+    pub b: usize,
+    /// Unstretched length L0 [m].
+    pub l0: f64,
+    /// Axial stiffness EA [N].
+    pub ea: f64,
+    /// Compression ratio r_c.
+    pub rc: f64,
+    /// Axial damping coefficient c_a [N·s].
+    pub ca: f64,
+    /// Mass per unstretched length μ [kg/m].
+    pub mu: f64,
+    /// Group index.
+    pub group: usize,
+    /// Seabed contact diameter [m] (0 = no contact).
+    pub contact_diameter: f64,
+}
+
+/// A point body on a node: mass, constant force and optional seabed stiffness.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PointBody {
+    /// Node index.
+    pub node: usize,
+    /// Mass m [kg] (≥ 0); its weight −m·g ẑ is applied.
+    pub mass: f64,
+    /// Constant force [N].
+    pub force: [f64; 3],
+    /// Seabed penalty stiffness [N/m] (≥ 0, 0 = none).
+    pub seabed_stiffness: f64,
+}
+
+/// Which translational DOFs of a node are held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Dofs {
+    /// x held.
+    pub x: bool,
+    /// y held.
+    pub y: bool,
+    /// z held.
+    pub z: bool,
+}
+
+impl Dofs {
+    /// All three DOFs.
+    pub const ALL: Dofs = Dofs {
+        x: true,
+        y: true,
+        z: true,
+    };
+    /// As an array.
+    pub fn as_array(self) -> [bool; 3] {
+        [self.x, self.y, self.z]
+    }
+}
+
+/// Support condition of a node.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Support {
+    /// No support.
+    Free,
+    /// Held at the as-built position in the given DOFs.
+    Fixed(Dofs),
+    /// All DOFs follow x = X + d(t) (index into the model's motions).
+    Prescribed(usize),
+}
+
+/// Named element group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Name.
+    pub name: String,
+    /// Section.
+    pub section: CableSection,
+    /// Elements of the group.
+    pub elements: Vec<usize>,
+}
+
+/// Handle of an element group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct GroupId(pub usize);
+
+/// Builds a [`Model`], validating every input.
+#[derive(Debug, Clone, Default)]
+pub struct ModelBuilder {
+    env: Environment,
+    nodes: Vec<[f64; 3]>,
+    elements: Vec<Cable>,
+    groups: Vec<Group>,
+    group_index: HashMap<String, usize>,
+    points: Vec<PointBody>,
+    supports: Vec<Support>,
+    motions: Vec<Motion>,
+}
+
+impl ModelBuilder {
+    /// New builder with the given environment (g, ρ_w, seabed).
+    pub fn new(env: Environment) -> Self {
+        Self {
+            env,
+            ..Default::default()
+        }
+    }
+
+    /// Adds a node at its as-built position [m]; returns its index.
+    pub fn add_node(&mut self, position: [f64; 3]) -> Result<usize> {
+        check_finite3(&format!("node {} position [m]", self.nodes.len()), position)?;
+        self.nodes.push(position);
+        self.supports.push(Support::Free);
+        Ok(self.nodes.len() - 1)
+    }
+
+    /// Adds (or looks up) a named element group with its section.
+    pub fn add_group(&mut self, name: &str, section: CableSection) -> Result<GroupId> {
+        section.validate(name)?;
+        if self.group_index.contains_key(name) {
+            return Err(FemError::InvalidModel(format!(
+                "group '{name}' defined twice"
+            )));
+        }
+        self.groups.push(Group {
+            name: name.to_string(),
+            section,
+            elements: Vec::new(),
+        });
+        self.group_index
+            .insert(name.to_string(), self.groups.len() - 1);
+        Ok(GroupId(self.groups.len() - 1))
+    }
+
+    fn check_node(&self, what: &str, node: usize) -> Result<()> {
+        if node >= self.nodes.len() {
+            return Err(FemError::UnknownNode {
+                what: what.to_string(),
+                node,
+                n_nodes: self.nodes.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Adds a cable element between nodes `a` and `b` in `group`; returns its index.
+    pub fn add_cable(
+        &mut self,
+        a: usize,
+        b: usize,
+        group: GroupId,
+        length: UnstretchedLength,
+    ) -> Result<usize> {
+        let id = self.elements.len();
+        self.check_node(&format!("element {id}"), a)?;
+        self.check_node(&format!("element {id}"), b)?;
+        if a == b {
+            return Err(FemError::InvalidModel(format!(
+                "element {id} connects node {a} to itself"
+            )));
+        }
+        let g = self.groups.get(group.0).ok_or_else(|| {
+            FemError::InvalidModel(format!("element {id}: group id {} does not exist", group.0))
+        })?;
+        let s = g.section;
+        let l = dist(self.nodes[a], self.nodes[b]);
+        let l0 = match length {
+            UnstretchedLength::Given(l0) => l0,
+            UnstretchedLength::AsBuilt { initial_tension } => {
+                if !(initial_tension.is_finite() && initial_tension > -s.ea) {
+                    return Err(invalid(
+                        format!("element {id} initial_tension [N]"),
+                        initial_tension,
+                        format!("> -EA = {}", -s.ea),
+                    ));
+                }
+                l / (1.0 + initial_tension / s.ea)
+            }
+        };
+        if !(l0.is_finite() && l0 > 0.0) {
+            return Err(invalid(
+                format!("element {id} (nodes {a}-{b}) unstretched_length [m]"),
+                l0,
+                "> 0 (coincident as-built nodes need an explicit length)",
+            ));
+        }
+        let ca = match s.axial_damping {
+            AxialDamping::None => 0.0,
+            AxialDamping::Coefficient(c) => c,
+            AxialDamping::Ratio(z) => z * l0 * (s.ea * s.mass_per_length).sqrt(),
+        };
+        self.elements.push(Cable {
+            a,
+            b,
+            l0,
+            ea: s.ea,
+            rc: s.compression_ratio,
+            ca,
+            mu: s.mass_per_length,
+            group: group.0,
+            contact_diameter: s.contact_diameter.unwrap_or(0.0),
+        });
+        self.groups[group.0].elements.push(id);
+        Ok(id)
+    }
+
+    /// Adds a point body (mass [kg], constant force [N], seabed stiffness [N/m]) on a node.
+    pub fn add_point_body(&mut self, body: PointBody) -> Result<usize> {
+        let id = self.points.len();
+        self.check_node(&format!("point body {id}"), body.node)?;
+        if !(body.mass.is_finite() && body.mass >= 0.0) {
+            return Err(invalid(
+                format!("point body {id} mass [kg]"),
+                body.mass,
+                ">= 0",
+            ));
+        }
+        check_finite3(&format!("point body {id} force [N]"), body.force)?;
+        if !(body.seabed_stiffness.is_finite() && body.seabed_stiffness >= 0.0) {
+            return Err(invalid(
+                format!("point body {id} seabed_stiffness [N/m]"),
+                body.seabed_stiffness,
+                ">= 0",
+            ));
+        }
+        self.points.push(body);
+        Ok(id)
+    }
+
+    /// Holds a node at its as-built position in the given DOFs.
+    pub fn fix(&mut self, node: usize, dofs: Dofs) -> Result<()> {
+        self.check_node("fix", node)?;
+        if let Support::Prescribed(_) = self.supports[node] {
+            return Err(FemError::InvalidModel(format!(
+                "node {node} is both fixed and prescribed"
+            )));
+        }
+        let prev = match self.supports[node] {
+            Support::Fixed(d) => d.as_array(),
+            _ => [false; 3],
+        };
+        let d = dofs.as_array();
+        self.supports[node] = Support::Fixed(Dofs {
+            x: prev[0] || d[0],
+            y: prev[1] || d[1],
+            z: prev[2] || d[2],
+        });
+        Ok(())
+    }
+
+    /// Prescribes the motion x(t) = X + d(t) of a node (all DOFs).
+    pub fn prescribe(&mut self, node: usize, motion: Motion) -> Result<()> {
+        self.check_node("prescribe", node)?;
+        motion.validate()?;
+        if !matches!(self.supports[node], Support::Free) {
+            return Err(FemError::InvalidModel(format!(
+                "node {node} already has a support; a node is either fixed or prescribed"
+            )));
+        }
+        self.motions.push(motion);
+        self.supports[node] = Support::Prescribed(self.motions.len() - 1);
+        Ok(())
+    }
+
+    /// Validates and freezes the model.
+    pub fn build(self) -> Result<Model> {
+        let env = self.env;
+        if !(env.gravity.is_finite() && env.gravity >= 0.0) {
+            return Err(invalid("gravity g [m/s^2]", env.gravity, ">= 0"));
+        }
+        if !(env.water_density.is_finite() && env.water_density > 0.0) {
+            return Err(invalid("water density [kg/m^3]", env.water_density, "> 0"));
+        }
+        if let Some(s) = env.seabed {
+            if !(s.depth.is_finite() && s.depth > 0.0) {
+                return Err(invalid("water depth [m]", s.depth, "> 0"));
+            }
+            if !(s.stiffness.is_finite() && s.stiffness >= 0.0) {
+                return Err(invalid("seabed kbot [Pa/m]", s.stiffness, ">= 0"));
+            }
+            if !(s.damping.is_finite() && s.damping >= 0.0) {
+                return Err(invalid("seabed cbot [Pa s/m]", s.damping, ">= 0"));
+            }
+        }
+        if self.nodes.is_empty() {
+            return Err(FemError::InvalidModel("the model has no nodes".into()));
+        }
+        let n = self.nodes.len();
+        let mut attached = vec![false; n];
+        for e in &self.elements {
+            attached[e.a] = true;
+            attached[e.b] = true;
+        }
+        for p in &self.points {
+            attached[p.node] = true;
+        }
+        if let Some(i) = attached.iter().position(|a| !a) {
+            return Err(FemError::InvalidModel(format!(
+                "node {i} at {:?} belongs to no element and carries no point body",
+                self.nodes[i]
+            )));
+        }
+        let mut lumped_mass = vec![0.0; n];
+        let mut weight = vec![[0.0; 3]; n];
+        let mut bed_coef = vec![0.0; n];
+        let mut bed_point = vec![0.0; n];
+        let mut point_force = vec![[0.0; 3]; n];
+        let mut point_mass = vec![0.0; n];
+        for e in &self.elements {
+            let m = 0.5 * e.mu * e.l0;
+            lumped_mass[e.a] += m;
+            lumped_mass[e.b] += m;
+            if e.contact_diameter > 0.0 {
+                bed_coef[e.a] += 0.5 * e.l0 * e.contact_diameter;
+                bed_coef[e.b] += 0.5 * e.l0 * e.contact_diameter;
+            }
+        }
+        for p in &self.points {
+            lumped_mass[p.node] += p.mass;
+            point_mass[p.node] += p.mass;
+            bed_point[p.node] += p.seabed_stiffness;
+            for k in 0..3 {
+                point_force[p.node][k] += p.force[k];
+            }
+        }
+        for i in 0..n {
+            weight[i][2] = -lumped_mass[i] * env.gravity;
+        }
+        let mean_length = if self.elements.is_empty() {
+            1.0
+        } else {
+            self.elements.iter().map(|e| e.l0).sum::<f64>() / self.elements.len() as f64
+        };
+        Ok(Model {
+            env,
+            nodes: self.nodes,
+            elements: self.elements,
+            groups: self.groups,
+            group_index: self.group_index,
+            points: self.points,
+            supports: self.supports,
+            motions: self.motions,
+            lumped_mass,
+            weight,
+            point_force,
+            bed_coef,
+            bed_point,
+            point_mass,
+            mean_length,
+        })
+    }
+}
+
+pub(crate) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt()
+}
+
+/// A validated structural model (immutable; solvers borrow it).
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub(crate) env: Environment,
+    pub(crate) nodes: Vec<[f64; 3]>,
+    pub(crate) elements: Vec<Cable>,
+    pub(crate) groups: Vec<Group>,
+    pub(crate) group_index: HashMap<String, usize>,
+    pub(crate) points: Vec<PointBody>,
+    pub(crate) supports: Vec<Support>,
+    pub(crate) motions: Vec<Motion>,
+    /// Lumped structural mass per node [kg].
+    pub(crate) lumped_mass: Vec<f64>,
+    /// Nodal weight vector [N].
+    pub(crate) weight: Vec<[f64; 3]>,
+    /// Constant point forces per node [N].
+    pub(crate) point_force: Vec<[f64; 3]>,
+    /// Σ d_c·L0/2 of contact elements per node [m²].
+    pub(crate) bed_coef: Vec<f64>,
+    /// Point-body seabed stiffness per node [N/m].
+    pub(crate) bed_point: Vec<f64>,
+    /// Point-body mass per node [kg].
+    pub(crate) point_mass: Vec<f64>,
+    pub(crate) mean_length: f64,
+}
+
+impl Model {
+    /// Environment (g, ρ_w, seabed).
+    pub fn environment(&self) -> &Environment {
+        &self.env
+    }
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+    /// As-built node positions X [m].
+    pub fn nodes(&self) -> &[[f64; 3]] {
+        &self.nodes
+    }
+    /// Cable elements.
+    pub fn elements(&self) -> &[Cable] {
+        &self.elements
+    }
+    /// Groups.
+    pub fn groups(&self) -> &[Group] {
+        &self.groups
+    }
+    /// Element indices of a named group.
+    pub fn group_elements(&self, name: &str) -> Option<&[usize]> {
+        self.group_index
+            .get(name)
+            .map(|&g| self.groups[g].elements.as_slice())
+    }
+    /// Point bodies.
+    pub fn point_bodies(&self) -> &[PointBody] {
+        &self.points
+    }
+    /// Support of each node.
+    pub fn supports(&self) -> &[Support] {
+        &self.supports
+    }
+    /// Lumped structural mass per node [kg] (elements + point bodies).
+    pub fn lumped_mass(&self) -> &[f64] {
+        &self.lumped_mass
+    }
+    /// Point-body mass on node i [kg].
+    pub(crate) fn point_mass_at(&self, i: usize) -> f64 {
+        self.point_mass[i]
+    }
+    /// Mean unstretched element length [m] (L_ref).
+    pub fn mean_element_length(&self) -> f64 {
+        self.mean_length
+    }
+    /// Whether DOF k of node i is constrained (fixed or prescribed).
+    pub fn is_constrained(&self, node: usize, k: usize) -> bool {
+        match &self.supports[node] {
+            Support::Free => false,
+            Support::Fixed(d) => d.as_array()[k],
+            Support::Prescribed(_) => true,
+        }
+    }
+
+    /// Position, velocity and acceleration of node `i` if it is prescribed, at time t.
+    pub(crate) fn prescribed(
+        &self,
+        i: usize,
+        t: f64,
+        scale: f64,
+    ) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+        match &self.supports[i] {
+            Support::Prescribed(m) => {
+                let (d, v, a) = self.motions[*m].eval(t);
+                let x0 = self.nodes[i];
+                Some((
+                    [
+                        x0[0] + scale * d[0],
+                        x0[1] + scale * d[1],
+                        x0[2] + scale * d[2],
+                    ],
+                    v.map(|c| c * scale),
+                    a.map(|c| c * scale),
+                ))
+            }
+            _ => None,
+        }
+    }
+
+    /// Sets constrained DOFs of (x, v, a) to their values at time t (prescribed offsets scaled
+    /// by `scale`, used by load continuation).
+    pub(crate) fn apply_constraints(
+        &self,
+        t: f64,
+        scale: f64,
+        x: &mut [[f64; 3]],
+        v: &mut [[f64; 3]],
+        a: &mut [[f64; 3]],
+    ) {
+        for i in 0..self.nodes.len() {
+            match &self.supports[i] {
+                Support::Free => {}
+                Support::Fixed(d) => {
+                    for (k, held) in d.as_array().into_iter().enumerate() {
+                        if held {
+                            x[i][k] = self.nodes[i][k];
+                            v[i][k] = 0.0;
+                            a[i][k] = 0.0;
+                        }
+                    }
+                }
+                Support::Prescribed(_) => {
+                    if let Some((p, vel, acc)) = self.prescribed(i, t, scale) {
+                        x[i] = p;
+                        v[i] = vel;
+                        a[i] = acc;
+                    }
+                }
+            }
+        }
+    }
+}

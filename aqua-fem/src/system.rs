@@ -1,0 +1,769 @@
+//! Global system: DOF numbering, sparse pattern (built once), assembly of residual and
+//! Jacobian, and the sparse LU with its symbolic factorisation reused (fem.md §13).
+
+use crate::cable::{self, CableEval};
+use crate::error::{FemError, Result};
+use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
+use crate::model::Model;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::{NumericLu, SymbolicLu, factorize_symbolic_lu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par};
+use rayon::prelude::*;
+
+pub(crate) const NONE: usize = usize::MAX;
+/// Element count above which element kernels run in parallel.
+const PAR_THRESHOLD: usize = 4096;
+
+/// Jacobian coefficients: J = m·M + k·K + c·C with K = ∂q/∂x, C = ∂q/∂v.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Coef {
+    pub m: f64,
+    pub k: f64,
+    pub c: f64,
+}
+
+/// What to evaluate.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct EvalOptions {
+    pub t: f64,
+    /// Scale of gravity, point forces and water loads (load continuation).
+    pub load_scale: f64,
+    /// Velocity-dependent terms (axial, seabed and Rayleigh damping) active.
+    pub dynamic: bool,
+    pub jacobian: Option<Coef>,
+    /// Compute M·a into `ma`.
+    pub inertia: bool,
+    pub consistent_mass: bool,
+    /// Rayleigh damping (a_M, a_K).
+    pub rayleigh: (f64, f64),
+    /// Form a missing ∂f_h/∂x by finite differences (otherwise it is omitted).
+    pub fd_dfdx: bool,
+}
+
+/// Sparse LU with a symbolic factorisation computed once.
+struct LinearSolver {
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+    mem: MemBuffer,
+}
+
+impl std::fmt::Debug for LinearSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LinearSolver").finish_non_exhaustive()
+    }
+}
+
+#[derive(Debug)]
+pub(crate) struct System {
+    pub n_nodes: usize,
+    /// Free index of global DOF 3i+k, or NONE.
+    pub free_of_dof: Vec<usize>,
+    /// Global DOF of each free index.
+    pub dof_of_free: Vec<usize>,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    pub values: Vec<f64>,
+    cable_pos: Vec<[usize; 36]>,
+    node_pos: Vec<[usize; 9]>,
+    load_nodes: Vec<[usize; MAX_LOAD_NODES]>,
+    load_nn: Vec<usize>,
+    load_pos_off: Vec<usize>,
+    load_pos: Vec<usize>,
+    load_stride: usize,
+    load_buf: Vec<f64>,
+    /// Per-element results of the last evaluation.
+    pub cable: Vec<CableEval>,
+    /// Internal (elastic + axial damping + Rayleigh) force, q sense [N].
+    pub fint: Vec<[f64; 3]>,
+    /// External forces on the structure: gravity, point forces, water loads, seabed [N].
+    pub fext: Vec<[f64; 3]>,
+    /// Water loads from the provider [N].
+    pub fhydro: Vec<[f64; 3]>,
+    /// Seabed contact force [N].
+    pub fbed: Vec<[f64; 3]>,
+    /// q = f_int − f_ext [N].
+    pub q: Vec<[f64; 3]>,
+    /// M·a (structural + added mass) [N].
+    pub ma: Vec<[f64; 3]>,
+    mv: Vec<[f64; 3]>,
+    /// Added-mass blocks per node [kg].
+    pub added: Vec<[[f64; 3]; 3]>,
+    /// Position of the diagonal entry of each free DOF in `values`.
+    pub diag_pos: Vec<usize>,
+    solver: Option<LinearSolver>,
+    pub n_factorisations: usize,
+}
+
+fn pos_in(col_ptr: &[usize], row_idx: &[usize], row: usize, col: usize) -> usize {
+    let s = &row_idx[col_ptr[col]..col_ptr[col + 1]];
+    col_ptr[col] + s.binary_search(&row).expect("entry in pattern")
+}
+
+impl System {
+    /// Numbers the free DOFs and builds the sparse pattern of the free-DOF Jacobian.
+    pub fn new<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<Self> {
+        let n = model.n_nodes();
+        let mut free_of_dof = vec![NONE; 3 * n];
+        let mut dof_of_free = Vec::new();
+        for i in 0..n {
+            for k in 0..3 {
+                if !model.is_constrained(i, k) {
+                    free_of_dof[3 * i + k] = dof_of_free.len();
+                    dof_of_free.push(3 * i + k);
+                }
+            }
+        }
+        let nl = provider.n_elements();
+        let mut load_nodes = Vec::with_capacity(nl);
+        let mut load_nn = Vec::with_capacity(nl);
+        let mut max_nn = 0;
+        for e in 0..nl {
+            let nodes = provider.element_nodes(e);
+            if nodes.is_empty() || nodes.len() > MAX_LOAD_NODES {
+                return Err(FemError::Load {
+                    element: e,
+                    message: format!(
+                        "load element has {} nodes; 1 to {MAX_LOAD_NODES} are allowed",
+                        nodes.len()
+                    ),
+                });
+            }
+            let mut arr = [0; MAX_LOAD_NODES];
+            for (j, &nd) in nodes.iter().enumerate() {
+                if nd >= n {
+                    return Err(FemError::UnknownNode {
+                        what: format!("load element {e}"),
+                        node: nd,
+                        n_nodes: n,
+                    });
+                }
+                if nodes[..j].contains(&nd) {
+                    return Err(FemError::Load {
+                        element: e,
+                        message: format!("node {nd} listed twice"),
+                    });
+                }
+                arr[j] = nd;
+            }
+            max_nn = max_nn.max(nodes.len());
+            load_nodes.push(arr);
+            load_nn.push(nodes.len());
+        }
+        // Node adjacency (sorted, deduplicated), including self.
+        let mut adj: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
+        for e in model.elements() {
+            adj[e.a].push(e.b);
+            adj[e.b].push(e.a);
+        }
+        for (e, nodes) in load_nodes.iter().enumerate() {
+            let nn = load_nn[e];
+            for &p in &nodes[..nn] {
+                for &q in &nodes[..nn] {
+                    if p != q {
+                        adj[p].push(q);
+                    }
+                }
+            }
+        }
+        for a in &mut adj {
+            a.sort_unstable();
+            a.dedup();
+        }
+        // CSC pattern over free DOFs; column order follows global DOF order, so rows sorted.
+        let nf = dof_of_free.len();
+        let mut col_ptr = Vec::with_capacity(nf + 1);
+        let mut row_idx = Vec::new();
+        col_ptr.push(0);
+        for &gd in &dof_of_free {
+            let node = gd / 3;
+            for &nb in &adj[node] {
+                for k in 0..3 {
+                    let f = free_of_dof[3 * nb + k];
+                    if f != NONE {
+                        row_idx.push(f);
+                    }
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let pos = |ni: usize, ki: usize, nj: usize, kj: usize| -> usize {
+            let r = free_of_dof[3 * ni + ki];
+            let c = free_of_dof[3 * nj + kj];
+            if r == NONE || c == NONE {
+                NONE
+            } else {
+                pos_in(&col_ptr, &row_idx, r, c)
+            }
+        };
+        let mut cable_pos = Vec::with_capacity(model.elements().len());
+        for e in model.elements() {
+            let nodes = [e.a, e.b];
+            let mut p = [NONE; 36];
+            for i in 0..2 {
+                for ki in 0..3 {
+                    for j in 0..2 {
+                        for kj in 0..3 {
+                            p[(3 * i + ki) * 6 + 3 * j + kj] = pos(nodes[i], ki, nodes[j], kj);
+                        }
+                    }
+                }
+            }
+            cable_pos.push(p);
+        }
+        let mut node_pos = Vec::with_capacity(n);
+        for i in 0..n {
+            let mut p = [NONE; 9];
+            for ki in 0..3 {
+                for kj in 0..3 {
+                    p[3 * ki + kj] = pos(i, ki, i, kj);
+                }
+            }
+            node_pos.push(p);
+        }
+        let mut load_pos_off = Vec::with_capacity(nl + 1);
+        let mut load_pos = Vec::new();
+        load_pos_off.push(0);
+        for (e, nodes) in load_nodes.iter().enumerate() {
+            let nn = load_nn[e];
+            for i in 0..nn {
+                for ki in 0..3 {
+                    for j in 0..nn {
+                        for kj in 0..3 {
+                            load_pos.push(pos(nodes[i], ki, nodes[j], kj));
+                        }
+                    }
+                }
+            }
+            load_pos_off.push(load_pos.len());
+        }
+        let diag_pos = (0..nf).map(|f| pos_in(&col_ptr, &row_idx, f, f)).collect();
+        let load_stride = 12 * max_nn + 9 * max_nn * max_nn;
+        let nnz = row_idx.len();
+        Ok(Self {
+            n_nodes: n,
+            free_of_dof,
+            dof_of_free,
+            col_ptr,
+            row_idx,
+            values: vec![0.0; nnz],
+            cable_pos,
+            node_pos,
+            load_nodes,
+            load_nn,
+            load_pos_off,
+            load_pos,
+            load_stride,
+            load_buf: vec![0.0; load_stride * nl],
+            cable: vec![CableEval::default(); model.elements().len()],
+            fint: vec![[0.0; 3]; n],
+            fext: vec![[0.0; 3]; n],
+            fhydro: vec![[0.0; 3]; n],
+            fbed: vec![[0.0; 3]; n],
+            q: vec![[0.0; 3]; n],
+            ma: vec![[0.0; 3]; n],
+            mv: vec![[0.0; 3]; n],
+            added: vec![[[0.0; 3]; 3]; n],
+            diag_pos,
+            solver: None,
+            n_factorisations: 0,
+        })
+    }
+
+    /// Number of free DOFs.
+    pub fn n_free(&self) -> usize {
+        self.dof_of_free.len()
+    }
+
+    /// Row sums of |J| (free DOFs) of the last assembled Jacobian.
+    pub fn row_abs_sums(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.n_free()];
+        for c in 0..self.n_free() {
+            for p in self.col_ptr[c]..self.col_ptr[c + 1] {
+                out[self.row_idx[p]] += self.values[p].abs();
+            }
+        }
+        out
+    }
+
+    /// Evaluates forces (and optionally M·a and the Jacobian) at state (x, v, a).
+    pub fn evaluate<P: LoadProvider + ?Sized>(
+        &mut self,
+        model: &Model,
+        provider: &mut P,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        a: &[[f64; 3]],
+        o: &EvalOptions,
+    ) -> Result<()> {
+        let n = self.n_nodes;
+        provider.prepare(o.t, x, v).map_err(|e| FemError::Load {
+            element: usize::MAX,
+            message: e.0,
+        })?;
+        // Cable elements.
+        let elements = model.elements();
+        let damping = o.dynamic;
+        let a_k = if o.dynamic { o.rayleigh.1 } else { 0.0 };
+        let kernel = |(i, out): (usize, &mut CableEval)| {
+            let e = &elements[i];
+            *out = cable::evaluate(e, x[e.a], x[e.b], v[e.a], v[e.b], damping, a_k * e.ea);
+        };
+        if elements.len() >= PAR_THRESHOLD {
+            self.cable.par_iter_mut().enumerate().for_each(kernel);
+        } else {
+            self.cable.iter_mut().enumerate().for_each(kernel);
+        }
+        if let Some(i) = self.cable.iter().position(|c| c.bad) {
+            let e = &elements[i];
+            return Err(FemError::NonFinite(format!(
+                "element {i} (nodes {}-{}): length {:.3e} m (L0 = {:.3e} m) degenerate or non-finite",
+                e.a, e.b, self.cable[i].length, e.l0
+            )));
+        }
+        // Load elements.
+        let nl = self.load_nn.len();
+        if nl > 0 {
+            let stride = self.load_stride;
+            let want = Want {
+                dfdv: o.jacobian.is_some_and(|c| c.c != 0.0) && o.dynamic,
+                dfdx: o.jacobian.is_some_and(|c| c.k != 0.0),
+            };
+            let coef = o.jacobian.unwrap_or(Coef {
+                m: 0.0,
+                k: 0.0,
+                c: 0.0,
+            });
+            let scale = o.load_scale;
+            let fd_dfdx = o.fd_dfdx;
+            let t = o.t;
+            let (load_nodes, load_nn) = (&self.load_nodes, &self.load_nn);
+            let prov: &P = provider;
+            let kernel = |(e, chunk): (usize, &mut [f64])| -> Result<()> {
+                let nn = load_nn[e];
+                let mut xl = [[0.0; 3]; MAX_LOAD_NODES];
+                let mut vl = [[0.0; 3]; MAX_LOAD_NODES];
+                for j in 0..nn {
+                    xl[j] = x[load_nodes[e][j]];
+                    vl[j] = v[load_nodes[e][j]];
+                }
+                load_element(prov, e, nn, t, &xl, &vl, want, coef, scale, fd_dfdx, chunk)
+            };
+            let res: Result<()> = if nl >= PAR_THRESHOLD {
+                self.load_buf
+                    .par_chunks_mut(stride)
+                    .enumerate()
+                    .try_for_each(kernel)
+            } else {
+                self.load_buf
+                    .chunks_mut(stride)
+                    .enumerate()
+                    .try_for_each(kernel)
+            };
+            res?;
+        }
+        // Nodal assembly.
+        let g_scale = o.load_scale;
+        for i in 0..n {
+            self.fint[i] = [0.0; 3];
+            self.fhydro[i] = [0.0; 3];
+            self.fbed[i] = [0.0; 3];
+            self.added[i] = [[0.0; 3]; 3];
+        }
+        for (e, c) in elements.iter().zip(&self.cable) {
+            for k in 0..3 {
+                self.fint[e.a][k] -= c.force_b[k];
+                self.fint[e.b][k] += c.force_b[k];
+            }
+        }
+        for e in 0..nl {
+            let nn = self.load_nn[e];
+            let chunk = &self.load_buf[e * self.load_stride..];
+            for j in 0..nn {
+                let nd = self.load_nodes[e][j];
+                for k in 0..3 {
+                    self.fhydro[nd][k] += g_scale * chunk[3 * j + k];
+                    for l in 0..3 {
+                        self.added[nd][k][l] += chunk[3 * nn + 9 * j + 3 * k + l];
+                    }
+                }
+            }
+        }
+        // Seabed.
+        let mut bed_k = 0.0;
+        let mut bed_c = 0.0;
+        let mut zs = f64::NEG_INFINITY;
+        if let Some(s) = model.env.seabed {
+            zs = -s.depth;
+            bed_k = s.stiffness;
+            bed_c = if o.dynamic { s.damping } else { 0.0 };
+        }
+        for i in 0..n {
+            let d = zs - x[i][2];
+            if d > 0.0 {
+                let coef = model.bed_coef[i];
+                let f = (bed_k * d - bed_c * v[i][2]) * coef;
+                if f > 0.0 {
+                    self.fbed[i][2] += f;
+                }
+                self.fbed[i][2] += model.bed_point[i] * d;
+            }
+        }
+        let a_m = if o.dynamic { o.rayleigh.0 } else { 0.0 };
+        for i in 0..n {
+            for k in 0..3 {
+                self.fext[i][k] = g_scale * (model.weight[i][k] + model.point_force[i][k])
+                    + self.fhydro[i][k]
+                    + self.fbed[i][k];
+            }
+        }
+        // Structural mass products (M·a and Rayleigh a_M·M·v).
+        let need_ma = o.inertia;
+        if need_ma || a_m != 0.0 {
+            for i in 0..n {
+                self.ma[i] = [0.0; 3];
+            }
+            if a_m != 0.0 {
+                mul_mass(model, o.consistent_mass, v, &mut self.mv);
+                for i in 0..n {
+                    for k in 0..3 {
+                        self.fint[i][k] += a_m * self.mv[i][k];
+                    }
+                }
+            }
+            if need_ma {
+                mul_mass(model, o.consistent_mass, a, &mut self.mv);
+                for i in 0..n {
+                    for k in 0..3 {
+                        let mut s = self.mv[i][k];
+                        for l in 0..3 {
+                            s += self.added[i][k][l] * a[i][l];
+                        }
+                        self.ma[i][k] = s;
+                    }
+                }
+            }
+        }
+        for i in 0..n {
+            for k in 0..3 {
+                self.q[i][k] = self.fint[i][k] - self.fext[i][k];
+            }
+        }
+        if let Some(cf) = o.jacobian {
+            self.assemble_jacobian(model, x, v, cf, o, zs, bed_k, bed_c, a_m);
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn assemble_jacobian(
+        &mut self,
+        model: &Model,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        cf: Coef,
+        o: &EvalOptions,
+        zs: f64,
+        bed_k: f64,
+        bed_c: f64,
+        a_m: f64,
+    ) {
+        let vals = &mut self.values;
+        vals.iter_mut().for_each(|x| *x = 0.0);
+        let mass_c = cf.m + cf.c * a_m;
+        for (ie, (e, c)) in model.elements().iter().zip(&self.cable).enumerate() {
+            let p = &self.cable_pos[ie];
+            let mut blk = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    blk[i][j] = cf.k * c.k[i][j] + cf.c * c.c[i][j];
+                }
+            }
+            let mm = if o.consistent_mass && mass_c != 0.0 {
+                mass_c * e.mu * e.l0 / 6.0
+            } else {
+                0.0
+            };
+            for i in 0..2 {
+                for j in 0..2 {
+                    let sign = if i == j { 1.0 } else { -1.0 };
+                    let mdiag = if i == j { 2.0 * mm } else { mm };
+                    for ki in 0..3 {
+                        for kj in 0..3 {
+                            let pp = p[(3 * i + ki) * 6 + 3 * j + kj];
+                            if pp != NONE {
+                                let mut val = sign * blk[ki][kj];
+                                if ki == kj {
+                                    val += mdiag;
+                                }
+                                vals[pp] += val;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Node blocks: lumped/point mass, added mass, seabed.
+        for i in 0..self.n_nodes {
+            let p = &self.node_pos[i];
+            if p.iter().all(|&q| q == NONE) {
+                continue;
+            }
+            let m_struct = if o.consistent_mass {
+                model.point_mass_at(i)
+            } else {
+                model.lumped_mass[i]
+            };
+            for ki in 0..3 {
+                for kj in 0..3 {
+                    let pp = p[3 * ki + kj];
+                    if pp == NONE {
+                        continue;
+                    }
+                    let mut val = cf.m * self.added[i][ki][kj];
+                    if ki == kj {
+                        val += mass_c * m_struct;
+                    }
+                    vals[pp] += val;
+                }
+            }
+            let d = zs - x[i][2];
+            let pz = p[8];
+            if d > 0.0 && pz != NONE {
+                let coef = model.bed_coef[i];
+                if (bed_k * d - bed_c * v[i][2]) * coef > 0.0 {
+                    vals[pz] += cf.k * bed_k * coef + cf.c * bed_c * coef;
+                }
+                vals[pz] += cf.k * model.bed_point[i];
+            }
+        }
+        // Load elements: stored block is already −scale·(k·dfdx + c·dfdv).
+        for e in 0..self.load_nn.len() {
+            let nn = self.load_nn[e];
+            let nd = 3 * nn;
+            let chunk = &self.load_buf[e * self.load_stride + 12 * nn..];
+            let pos = &self.load_pos[self.load_pos_off[e]..self.load_pos_off[e + 1]];
+            for (r, &pp) in pos.iter().enumerate() {
+                if pp != NONE {
+                    vals[pp] += chunk[r];
+                }
+            }
+            debug_assert_eq!(pos.len(), nd * nd);
+        }
+    }
+
+    /// Numeric LU of the current `values` (symbolic analysis on first use).
+    pub fn factorize(&mut self) -> Result<()> {
+        let nf = self.n_free();
+        if nf == 0 {
+            return Ok(());
+        }
+        if let Some(v) = self.values.iter().find(|v| !v.is_finite()) {
+            return Err(FemError::NonFinite(format!("Jacobian entry {v}")));
+        }
+        // SAFETY-free: the pattern was built with sorted, in-range, unique row indices.
+        let sym = SymbolicSparseColMatRef::new_checked(nf, nf, &self.col_ptr, None, &self.row_idx);
+        if self.solver.is_none() {
+            let symbolic = factorize_symbolic_lu(sym, Default::default())
+                .map_err(|e| FemError::Linear(format!("symbolic LU: {e:?}")))?;
+            let par = Par::Seq;
+            let req = symbolic
+                .factorize_numeric_lu_scratch::<f64>(par, Default::default())
+                .or(symbolic.solve_in_place_scratch::<f64>(1, par));
+            self.solver = Some(LinearSolver {
+                symbolic,
+                numeric: NumericLu::new(),
+                mem: MemBuffer::try_new(req)
+                    .map_err(|_| FemError::Linear("out of memory for LU workspace".into()))?,
+            });
+        }
+        let s = self.solver.as_mut().expect("solver initialised");
+        let mat = SparseColMatRef::new(sym, &self.values);
+        s.symbolic
+            .factorize_numeric_lu(
+                &mut s.numeric,
+                mat,
+                Par::Seq,
+                MemStack::new(&mut s.mem),
+                Default::default(),
+            )
+            .map_err(|e| FemError::Linear(format!("singular Jacobian ({e:?}); check supports")))?;
+        self.n_factorisations += 1;
+        Ok(())
+    }
+
+    /// Solves J·y = rhs in place with the last factorisation.
+    pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let nf = self.n_free();
+        if nf == 0 {
+            return Ok(());
+        }
+        let s = self
+            .solver
+            .as_mut()
+            .ok_or_else(|| FemError::Linear("solve before factorisation".into()))?;
+        let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&s.symbolic, &s.numeric);
+        let m = MatMut::from_column_major_slice_mut(rhs, nf, 1);
+        lu.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut s.mem));
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(FemError::Linear(
+                "the Jacobian is singular (non-finite solution): a part of the structure may be \
+                 unsupported or massless"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Structural mass matrix (lumped or consistent, plus point masses) times a nodal vector.
+pub(crate) fn mul_mass(model: &Model, consistent: bool, a: &[[f64; 3]], out: &mut [[f64; 3]]) {
+    let n = model.n_nodes();
+    if consistent {
+        for i in 0..n {
+            let m = model.point_mass_at(i);
+            for k in 0..3 {
+                out[i][k] = m * a[i][k];
+            }
+        }
+        for e in model.elements() {
+            let m = e.mu * e.l0 / 6.0;
+            for k in 0..3 {
+                out[e.a][k] += m * (2.0 * a[e.a][k] + a[e.b][k]);
+                out[e.b][k] += m * (a[e.a][k] + 2.0 * a[e.b][k]);
+            }
+        }
+    } else {
+        for i in 0..n {
+            let m = model.lumped_mass[i];
+            for k in 0..3 {
+                out[i][k] = m * a[i][k];
+            }
+        }
+    }
+}
+
+/// Evaluates one load element into its buffer chunk: [force 3n][added mass 9n][J (3n)²] with
+/// J = −scale·(c_k·∂f/∂x + c_c·∂f/∂v).
+#[allow(clippy::too_many_arguments)]
+fn load_element<P: LoadProvider + ?Sized>(
+    prov: &P,
+    e: usize,
+    nn: usize,
+    t: f64,
+    xl: &[[f64; 3]; MAX_LOAD_NODES],
+    vl: &[[f64; 3]; MAX_LOAD_NODES],
+    want: Want,
+    coef: Coef,
+    scale: f64,
+    fd_dfdx: bool,
+    chunk: &mut [f64],
+) -> Result<()> {
+    let err = |m: crate::error::LoadError| FemError::Load {
+        element: e,
+        message: m.0,
+    };
+    let mut out = ElementLoad::default();
+    out.reset(nn);
+    prov.element_load(e, t, &xl[..nn], &vl[..nn], want, &mut out)
+        .map_err(err)?;
+    let nd = 3 * nn;
+    for j in 0..nn {
+        for k in 0..3 {
+            let f = out.force[j][k];
+            if !f.is_finite() {
+                return Err(FemError::Load {
+                    element: e,
+                    message: format!("non-finite force {f} on local node {j}"),
+                });
+            }
+            chunk[3 * j + k] = f;
+            for l in 0..3 {
+                chunk[3 * nn + 9 * j + 3 * k + l] = out.added_mass[j][k][l];
+            }
+        }
+    }
+    if !(want.dfdv || want.dfdx) {
+        return Ok(());
+    }
+    let jac = &mut chunk[12 * nn..12 * nn + nd * nd];
+    jac.iter_mut().for_each(|v| *v = 0.0);
+    let mut tmp = ElementLoad::default();
+    // Element size and speed for the perturbations.
+    let mut size: f64 = 0.0;
+    let mut speed: f64 = 0.0;
+    for i in 0..nn {
+        speed = speed.max(norm(vl[i]));
+        for j in 0..i {
+            size = size.max(norm(sub(xl[i], xl[j])));
+        }
+    }
+    let mut fd = |wrt_x: bool, w: f64, jac: &mut [f64]| -> Result<()> {
+        let h = if wrt_x {
+            1e-7 * size.max(1.0)
+        } else {
+            1e-7 * speed.max(1.0)
+        };
+        for c in 0..nd {
+            let mut fp = [0.0; MAX_LOAD_DOFS];
+            for sgn in [1.0, -1.0] {
+                let mut xp = *xl;
+                let mut vp = *vl;
+                if wrt_x {
+                    xp[c / 3][c % 3] += sgn * h;
+                } else {
+                    vp[c / 3][c % 3] += sgn * h;
+                }
+                tmp.reset(nn);
+                prov.element_load(e, t, &xp[..nn], &vp[..nn], Want::default(), &mut tmp)
+                    .map_err(err)?;
+                for r in 0..nd {
+                    fp[r] += sgn * tmp.force[r / 3][r % 3];
+                }
+            }
+            for r in 0..nd {
+                jac[r * nd + c] -= w * fp[r] / (2.0 * h);
+            }
+        }
+        Ok(())
+    };
+    if want.dfdx && coef.k != 0.0 {
+        if out.has_dfdx {
+            for r in 0..nd {
+                for c in 0..nd {
+                    jac[r * nd + c] -= scale * coef.k * out.dfdx[r][c];
+                }
+            }
+        } else if fd_dfdx {
+            fd(true, scale * coef.k, jac)?;
+        }
+    }
+    if want.dfdv && coef.c != 0.0 {
+        if out.has_dfdv {
+            for r in 0..nd {
+                for c in 0..nd {
+                    jac[r * nd + c] -= scale * coef.c * out.dfdv[r][c];
+                }
+            }
+        } else {
+            fd(false, scale * coef.c, jac)?;
+        }
+    }
+    if jac.iter().any(|v| !v.is_finite()) {
+        return Err(FemError::Load {
+            element: e,
+            message: "non-finite load derivative".into(),
+        });
+    }
+    Ok(())
+}
+
+#[inline]
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
