@@ -30,12 +30,22 @@ pub struct SpectrumEstimate {
 }
 
 impl SpectrumEstimate {
-    /// Peak period Tp [s]: the largest bin, refined by a parabola through ln S at it and its
-    /// two neighbours (exact for a Gaussian peak, close for a Hann-windowed line).
+    /// Peak period Tp [s]: the spectrum is band-averaged over 5 bins (to tame the scatter
+    /// of single periodogram bins), then the largest bin is refined by a parabola through ln S
+    /// at it and its two neighbours (exact for a Gaussian peak, close for a Hann-windowed line).
     pub fn peak_period(&self) -> f64 {
         let n = self.density.len();
-        let Some((k, _)) = self
-            .density
+        if n < 3 {
+            return f64::NAN;
+        }
+        let smooth: Vec<f64> = (0..n)
+            .map(|k| {
+                let lo = k.saturating_sub(2);
+                let hi = (k + 2).min(n - 1);
+                self.density[lo..=hi].iter().sum::<f64>() / (hi - lo + 1) as f64
+            })
+            .collect();
+        let Some((k, _)) = smooth
             .iter()
             .enumerate()
             .skip(1)
@@ -45,12 +55,8 @@ impl SpectrumEstimate {
         };
         let dw = self.omega[1] - self.omega[0];
         let mut w = self.omega[k];
-        if k + 1 < n && self.density[k - 1] > 0.0 && self.density[k + 1] > 0.0 {
-            let (a, b, c) = (
-                self.density[k - 1].ln(),
-                self.density[k].ln(),
-                self.density[k + 1].ln(),
-            );
+        if k + 1 < n && smooth[k - 1] > 0.0 && smooth[k + 1] > 0.0 {
+            let (a, b, c) = (smooth[k - 1].ln(), smooth[k].ln(), smooth[k + 1].ln());
             let den = a - 2.0 * b + c;
             if den < 0.0 {
                 w += 0.5 * (a - c) / den * dw;

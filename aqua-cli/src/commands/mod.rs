@@ -1,0 +1,3 @@
+//! One module per `aqua` subcommand.
+
+pub mod waves;

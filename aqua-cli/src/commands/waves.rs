@@ -1,0 +1,495 @@
+//! `aqua waves`: preview a sea state before simulating it.
+//!
+//! Prints the sea-state summary (each regular wave's T, ω, k, L, c; for an irregular sea Hs, Tp,
+//! γ, components, and Hs and Tp measured back from a generated record), optionally writes CSV
+//! time series `t,x,y,z,eta,u,v,w,ax,ay,az` at given points and the component table.
+
+use crate::InputError;
+use crate::scene;
+use anyhow::Context;
+use aqua_env::config::{
+    CurrentKind, DepthValue, GammaValue, SpectrumShape, SpectrumSpec, WaveKind,
+};
+use aqua_env::record::{significant_height, welch};
+use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Spacing, Stretching, Waves};
+use serde::Serialize;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Flags of `aqua waves`. Flags override the scene's `[sea]` values.
+#[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct Args {
+    /// Scene (or sea) TOML file whose `[sea]` table describes the sea.
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Wave kind: none, airy, stokes2, irregular.
+    #[arg(long, value_parser = ["none", "airy", "stokes2", "irregular"])]
+    pub kind: Option<String>,
+    /// Water depth h [m], or "infinite".
+    #[arg(long)]
+    pub depth: Option<String>,
+    /// Regular wave height H [m] (crest to trough).
+    #[arg(long)]
+    pub height: Option<f64>,
+    /// Regular wave period T [s].
+    #[arg(long)]
+    pub period: Option<f64>,
+    /// Travel direction [deg] from +x towards +y (regular waves; mean direction of irregular).
+    #[arg(long)]
+    pub direction: Option<f64>,
+    /// Significant wave height Hs [m] (irregular).
+    #[arg(long)]
+    pub hs: Option<f64>,
+    /// Peak period Tp [s] (irregular).
+    #[arg(long)]
+    pub tp: Option<f64>,
+    /// Spectrum shape: jonswap or pm.
+    #[arg(long, value_parser = ["jonswap", "pm"])]
+    pub spectrum: Option<String>,
+    /// JONSWAP peak enhancement γ (>= 1) or "auto".
+    #[arg(long)]
+    pub gamma: Option<String>,
+    /// Number of irregular components.
+    #[arg(long)]
+    pub components: Option<usize>,
+    /// Seed of the random phases.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// cos-2s spreading exponent (short-crested sea).
+    #[arg(long)]
+    pub spreading: Option<f64>,
+    /// Stretching: none, vertical, wheeler.
+    #[arg(long, value_parser = ["none", "vertical", "wheeler"])]
+    pub stretching: Option<String>,
+    /// Uniform current velocity "ux,uy,uz" [m/s].
+    #[arg(long, value_delimiter = ',', num_args = 3, allow_hyphen_values = true)]
+    pub current: Option<Vec<f64>>,
+    /// Gravity g [m/s²].
+    #[arg(long)]
+    pub gravity: Option<f64>,
+    /// Wave ramp duration [s] (0: none).
+    #[arg(long)]
+    pub ramp_time: Option<f64>,
+    /// A point "x,y,z" [m] for the CSV series (repeat for several points).
+    #[arg(long = "at", value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub at: Vec<String>,
+    /// Duration of the CSV series [s].
+    #[arg(long, default_value_t = 100.0)]
+    pub duration: f64,
+    /// Time step of the CSV series [s].
+    #[arg(long, default_value_t = 0.1)]
+    pub dt: f64,
+    /// Write the CSV series here (needs at least one --at point).
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Write the component table (i, omega, T, k, a, beta_deg, phase_deg) here.
+    #[arg(long)]
+    pub component_table: Option<PathBuf>,
+    /// Length of the record generated to measure Hs and Tp back [s] (default 3 h).
+    #[arg(long, default_value_t = 10_800.0)]
+    pub record: f64,
+    /// Print the summary as JSON (SI units) instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Hs and Tp measured from a generated record at x = y = 0.
+#[derive(Debug, Clone, Serialize)]
+pub struct Measured {
+    /// Record length [s].
+    pub record_seconds: f64,
+    /// 4σ_η [m].
+    pub hs: f64,
+    /// Peak period from a Welch spectrum [s].
+    pub tp: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct Report<'a> {
+    #[serde(flatten)]
+    summary: &'a SeaSummary,
+    measured: Option<Measured>,
+}
+
+/// The scene-file spelling of an enum value (its serde name).
+fn key_name<T: Serialize>(v: &T) -> String {
+    match serde_json::to_value(v) {
+        Ok(serde_json::Value::String(s)) => s,
+        _ => "?".into(),
+    }
+}
+
+fn input(msg: String) -> anyhow::Error {
+    InputError::new(msg).into()
+}
+
+fn parse_point(s: &str) -> anyhow::Result<[f64; 3]> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| input(format!("--at {s}: expected three numbers x,y,z in m")))?;
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
+        return Err(input(format!("--at {s}: expected three finite numbers x,y,z in m")));
+    }
+    Ok([v[0], v[1], v[2]])
+}
+
+/// Applies the flags on top of a sea description.
+fn apply_flags(mut spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
+    if let Some(d) = &a.depth {
+        spec.depth = Some(match d.parse::<f64>() {
+            Ok(h) => DepthValue::Metres(h),
+            Err(_) => DepthValue::Word(d.clone()),
+        });
+    }
+    if let Some(g) = a.gravity {
+        spec.gravity = g;
+    }
+    if let Some(c) = &a.current {
+        spec.current.kind = CurrentKind::Uniform;
+        spec.current.velocity = Some([c[0], c[1], c[2]]);
+    }
+    let w = &mut spec.waves;
+    if let Some(k) = &a.kind {
+        w.kind = match k.as_str() {
+            "airy" => WaveKind::Airy,
+            "stokes2" => WaveKind::Stokes2,
+            "irregular" => WaveKind::Irregular,
+            _ => WaveKind::None,
+        };
+    }
+    if let Some(s) = &a.stretching {
+        w.stretching = Some(match s.as_str() {
+            "vertical" => Stretching::Vertical,
+            "wheeler" => Stretching::Wheeler,
+            _ => Stretching::None,
+        });
+    }
+    if let Some(r) = a.ramp_time {
+        w.ramp_time = r;
+    }
+    let irregular_flags = a.hs.is_some()
+        || a.tp.is_some()
+        || a.spectrum.is_some()
+        || a.gamma.is_some()
+        || a.components.is_some()
+        || a.seed.is_some()
+        || a.spreading.is_some();
+    if w.kind == WaveKind::Irregular || irregular_flags {
+        if w.kind != WaveKind::Irregular {
+            return Err(input(
+                "--hs/--tp/--spectrum/--gamma/--components/--seed/--spreading need --kind irregular \
+                 (or an irregular sea in the scene)"
+                    .into(),
+            ));
+        }
+        let sp = w.spectrum.get_or_insert_with(|| SpectrumSpec {
+            shape: SpectrumShape::Jonswap,
+            hs: None,
+            tp: None,
+            gamma: None,
+            mean_direction: 0.0,
+            spreading_s: None,
+            components: 200,
+            spacing: Spacing::RandomInBin,
+            seed: 1,
+            energy_cutoff: 1e-3,
+            normalise: false,
+            table: None,
+        });
+        if let Some(v) = a.hs {
+            sp.hs = Some(v);
+        }
+        if let Some(v) = a.tp {
+            sp.tp = Some(v);
+        }
+        if let Some(s) = &a.spectrum {
+            sp.shape = if s == "pm" {
+                SpectrumShape::Pm
+            } else {
+                SpectrumShape::Jonswap
+            };
+        }
+        if let Some(g) = &a.gamma {
+            sp.gamma = Some(match g.parse::<f64>() {
+                Ok(v) => GammaValue::Number(v),
+                Err(_) => GammaValue::Word(g.clone()),
+            });
+        }
+        if let Some(n) = a.components {
+            sp.components = n;
+        }
+        if let Some(s) = a.seed {
+            sp.seed = s;
+        }
+        if let Some(s) = a.spreading {
+            sp.spreading_s = Some(s);
+        }
+        if let Some(d) = a.direction {
+            sp.mean_direction = d;
+        }
+    } else {
+        if let Some(h) = a.height {
+            w.height = Some(h);
+        }
+        if let Some(t) = a.period {
+            w.period = Some(t);
+        }
+        if let Some(d) = a.direction {
+            w.direction = d;
+        }
+    }
+    Ok(spec)
+}
+
+/// Generates η at the origin over `record` seconds after the ramp and measures Hs and Tp.
+fn measure(sea: &Sea, record: f64, tp_hint: f64, ramp: f64) -> Option<Measured> {
+    let dt = (tp_hint / 20.0).min(0.5);
+    let n = (record / dt).floor() as usize;
+    if n < 512 {
+        return None;
+    }
+    let eta: Vec<f64> = (0..n)
+        .map(|i| sea.elevation(0.0, 0.0, ramp + i as f64 * dt, Phase::Dynamic))
+        .collect();
+    let mut seg = 64usize;
+    while seg * 2 <= n / 8 {
+        seg *= 2;
+    }
+    let est = welch(&eta, dt, seg)?;
+    Some(Measured {
+        record_seconds: n as f64 * dt,
+        hs: significant_height(&eta),
+        tp: est.peak_period(),
+    })
+}
+
+/// Run `aqua waves`.
+pub fn run(a: Args) -> anyhow::Result<()> {
+    let base = match &a.scene {
+        Some(path) => scene::read_sea(path)?,
+        None => SeaSpec::default(),
+    };
+    let spec = apply_flags(base, &a)?;
+    if spec.waves.kind == WaveKind::None && spec.current.kind == CurrentKind::None && a.scene.is_none()
+    {
+        return Err(input(
+            "no sea given: use --scene FILE (its [sea] table) or flags such as \
+             --kind airy --height 2 --period 8 --depth 50"
+                .into(),
+        ));
+    }
+    let points: Vec<[f64; 3]> = a.at.iter().map(|s| parse_point(s)).collect::<Result<_, _>>()?;
+    if !(a.dt > 0.0 && a.dt.is_finite()) {
+        return Err(input(format!("--dt {}: must be a time step > 0 in s", a.dt)));
+    }
+    if !(a.duration >= 0.0 && a.duration.is_finite()) {
+        return Err(input(format!("--duration {}: must be >= 0 s", a.duration)));
+    }
+    if a.csv.is_some() && points.is_empty() {
+        return Err(input("--csv needs at least one --at x,y,z point".into()));
+    }
+    let opts = BuildOptions {
+        z_ref: 0.0,
+        duration: Some(a.duration),
+    };
+    let (sea, summary) = spec.build(&opts).map_err(|e| {
+        let where_ = a
+            .scene
+            .as_ref()
+            .map(|p| format!("{}: ", p.display()))
+            .unwrap_or_default();
+        input(format!("{where_}{e}"))
+    })?;
+    let measured = summary.irregular.as_ref().and_then(|irr| {
+        measure(&sea, a.record, irr.tp, summary.wave_ramp_time)
+    });
+    if a.json {
+        let report = Report {
+            summary: &summary,
+            measured: measured.clone(),
+        };
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", format_summary(&summary, measured.as_ref()));
+    }
+    if let Some(path) = &a.component_table {
+        write_component_table(&sea, path)?;
+    }
+    if let Some(path) = &a.csv {
+        write_series(&sea, &points, a.duration, a.dt, path)?;
+        if !a.json {
+            println!(
+                "wrote {} ({} points x {} steps)",
+                path.display(),
+                points.len(),
+                (a.duration / a.dt).floor() as usize + 1
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The human-readable sea-state summary.
+pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
+    use std::fmt::Write as _;
+    let mut o = String::new();
+    let depth = s
+        .depth
+        .map(|d| format!("{d} m"))
+        .unwrap_or_else(|| "infinite".into());
+    let _ = writeln!(
+        o,
+        "sea: g = {} m/s², rho = {} kg/m³, nu = {:e} m²/s, depth = {depth}",
+        s.gravity, s.density, s.kinematic_viscosity
+    );
+    let _ = writeln!(
+        o,
+        "current: {}, surface velocity = [{}, {}, {}] m/s, ramp {} s",
+        key_name(&s.current),
+        s.current_surface_velocity[0],
+        s.current_surface_velocity[1],
+        s.current_surface_velocity[2],
+        s.current_ramp_time
+    );
+    let _ = writeln!(
+        o,
+        "waves: {}{}, ramp {} s",
+        key_name(&s.waves),
+        s.stretching
+            .map(|st| format!(", stretching {}", st.name()))
+            .unwrap_or_default(),
+        s.wave_ramp_time
+    );
+    if !s.regular.is_empty() {
+        let _ = writeln!(
+            o,
+            "  {:>8} {:>8} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8} {:>8} {:>8}",
+            "H [m]", "T [s]", "w [rad/s]", "k [1/m]", "L [m]", "c [m/s]", "kh", "H/L", "Ursell", "dir"
+        );
+        for r in &s.regular {
+            let _ = writeln!(
+                o,
+                "  {:>8.3} {:>8.3} {:>10.5} {:>10.6} {:>10.3} {:>8.3} {:>8} {:>8.4} {:>8} {:>8.1}",
+                r.height,
+                r.period,
+                r.omega,
+                r.wave_number,
+                r.wavelength,
+                r.phase_speed,
+                r.kh.map(|v| format!("{v:.3}")).unwrap_or("inf".into()),
+                r.steepness,
+                r.ursell.map(|v| format!("{v:.3}")).unwrap_or("-".into()),
+                r.direction_deg
+            );
+        }
+    }
+    if let Some(i) = &s.irregular {
+        let _ = writeln!(
+            o,
+            "  spectrum {}: Hs = {} m, Tp = {:.3} s, gamma = {}, {} components ({}), seed {}",
+            i.shape,
+            i.hs.map(|v| v.to_string()).unwrap_or("-".into()),
+            i.tp,
+            i.gamma.map(|g| format!("{g:.3}")).unwrap_or("-".into()),
+            i.components,
+            key_name(&i.spacing),
+            i.seed
+        );
+        let _ = writeln!(
+            o,
+            "  band [{:.4}, {:.4}] rad/s, retained m0 = {:.5} m², Hm0 = {:.4} m, dropped {:.3e} of the energy{}",
+            i.omega_lo,
+            i.omega_hi,
+            i.m0_retained,
+            i.hm0_retained,
+            i.dropped_fraction,
+            i.repeat_period
+                .map(|t| format!(", repeats every {t:.1} s"))
+                .unwrap_or_default()
+        );
+        let _ = writeln!(
+            o,
+            "  direction {} deg, {}",
+            i.mean_direction_deg,
+            i.spreading_s
+                .map(|s| format!("short-crested (cos-2s, s = {s})"))
+                .unwrap_or("long-crested".into())
+        );
+    }
+    if let Some(m) = measured {
+        let _ = writeln!(
+            o,
+            "  measured from a {:.0} s record at x = y = 0: Hs = {:.4} m, Tp = {:.3} s",
+            m.record_seconds, m.hs, m.tp
+        );
+    }
+    for w in &s.warnings {
+        let _ = writeln!(o, "warning: {w}");
+    }
+    o
+}
+
+fn write_component_table(sea: &Sea, path: &std::path::Path) -> anyhow::Result<()> {
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+    );
+    writeln!(f, "i,omega,T,k,a,beta_deg,phase_deg")?;
+    if let Waves::Linear { sum, .. } = sea.waves() {
+        for (i, c) in sum.components().iter().enumerate() {
+            writeln!(
+                f,
+                "{i},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
+                c.omega,
+                c.period(),
+                c.k,
+                c.amplitude,
+                c.direction.to_degrees(),
+                c.phase.to_degrees()
+            )?;
+        }
+    }
+    f.flush()?;
+    Ok(())
+}
+
+fn write_series(
+    sea: &Sea,
+    points: &[[f64; 3]],
+    duration: f64,
+    dt: f64,
+    path: &std::path::Path,
+) -> anyhow::Result<()> {
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+    );
+    writeln!(f, "t,x,y,z,eta,u,v,w,ax,ay,az")?;
+    let steps = (duration / dt + 1e-9).floor() as usize;
+    let mut out = vec![aqua_env::FlowPoint::default(); points.len()];
+    for n in 0..=steps {
+        let t = n as f64 * dt;
+        sea.eval(t, Phase::Dynamic, points, &mut out);
+        for (p, k) in points.iter().zip(&out) {
+            let u = k.velocity();
+            let a = [
+                k.current_acc[0] + k.wave_acc[0],
+                k.current_acc[1] + k.wave_acc[1],
+                k.current_acc[2] + k.wave_acc[2],
+            ];
+            // + 0.0 turns −0 into 0 so the CSV never shows "-0".
+            let vals = [k.eta, u[0], u[1], u[2], a[0], a[1], a[2]].map(|v| v + 0.0);
+            if vals.iter().any(|v| !v.is_finite()) {
+                anyhow::bail!("non-finite sea kinematics at t = {t} s, point {p:?}");
+            }
+            writeln!(
+                f,
+                "{t},{},{},{},{},{},{},{},{},{},{}",
+                p[0], p[1], p[2], vals[0], vals[1], vals[2], vals[3], vals[4], vals[5], vals[6]
+            )?;
+        }
+    }
+    f.flush()?;
+    Ok(())
+}

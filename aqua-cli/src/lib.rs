@@ -1,0 +1,35 @@
+//! aqua-cli: the scene file, the wiring of the aqua crates, and the outputs of the `aqua` binary.
+//!
+//! Every subcommand lives in [`commands`]; `main.rs` only parses the command line, dispatches
+//! and maps errors to exit codes (2 for bad input, see [`InputError`]; 1 for a failed run).
+
+pub mod commands;
+pub mod scene;
+
+use std::fmt;
+
+/// An error caused by the user's input (a flag, a scene key, a file): the binary exits with 2.
+///
+/// The message names the file/key/value and says what would be valid.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InputError(pub String);
+
+impl InputError {
+    /// Wrap a message that names the offending input and the valid range.
+    pub fn new(msg: impl Into<String>) -> Self {
+        Self(msg.into())
+    }
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for InputError {}
+
+/// True when the error (or anything in its chain) is an [`InputError`].
+pub fn is_input_error(err: &anyhow::Error) -> bool {
+    err.chain().any(|e| e.downcast_ref::<InputError>().is_some())
+}

@@ -1,0 +1,37 @@
+//! The `aqua` binary: parses the command line and dispatches to [`aqua_cli::commands`].
+
+use aqua_cli::commands;
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// aqua — fast simulation of aquaculture nets, ropes and moorings in current and waves.
+#[derive(Parser, Debug)]
+#[command(name = "aqua", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Preview a sea state: summary, CSV time series of elevation and kinematics.
+    Waves(commands::waves::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Waves(a) => commands::waves::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            if aqua_cli::is_input_error(&err) {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
+        }
+    }
+}
