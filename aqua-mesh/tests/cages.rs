@@ -74,8 +74,13 @@ fn worked_ssm_geometry_and_grouping() {
 
     // Net line lengths: 2820.17 m with the top edge, 2700.17 m without (spec, 2 decimals).
     let tw = m.group(0, "net_twines").unwrap();
-    let top: std::collections::BTreeSet<usize> =
-        m.group(0, "net_top").unwrap().nodes.iter().copied().collect();
+    let top: std::collections::BTreeSet<usize> = m
+        .group(0, "net_top")
+        .unwrap()
+        .nodes
+        .iter()
+        .copied()
+        .collect();
     let mut total = 0.0;
     let mut no_top = 0.0;
     for &e in &tw.lines {
@@ -113,7 +118,11 @@ fn worked_ssm_geometry_and_grouping() {
     assert!(ws.iter().all(|w| (w - 981.0).abs() < 1e-9));
     assert!((ws.iter().sum::<f64>() - 47088.0).abs() < 1e-6);
     let tipw = m.group_index(0, "tip").unwrap();
-    assert!(m.weights.iter().any(|w| w.group == tipw && w.weight == 981.0));
+    assert!(
+        m.weights
+            .iter()
+            .any(|w| w.group == tipw && w.weight == 981.0)
+    );
 }
 
 #[test]
@@ -135,7 +144,10 @@ fn worked_ssm_three_origins() {
     }
     assert_eq!(m.lines[1920].copy, 1);
     assert_eq!(m.panels[1343].copy, 1);
-    assert_eq!(m.resolve_nodes("cage0#2/tip").unwrap(), vec![2 * 1057 + 672]);
+    assert_eq!(
+        m.resolve_nodes("cage0#2/tip").unwrap(),
+        vec![2 * 1057 + 672]
+    );
     // λ shared by all copies.
     assert!((m.objects[0].net.as_ref().unwrap().lambda - 81.11).abs() / 81.11 < 1e-3);
 }
@@ -144,10 +156,54 @@ fn worked_ssm_three_origins() {
 fn defaults_table() {
     // cages.md §9: type, NT NN BN, nodes, net lines, panels, ropes, ties, ring+links, bottom, λ.
     let rows = [
-        (CageType::Ssm, (48, 6, 8), 1057, 1344, 672, 336, 144, 96, 0, 81.11),
-        (CageType::Csm, (48, 6, 5), 913, 1056, 528, 336, 144, 96, 0, 99.83),
-        (CageType::Cct, (48, 6, 5), 913, 1056, 528, 336, 48, 96, 48, 99.83),
-        (CageType::Ccs, (48, 6, 5), 1490, 1056, 528, 960, 144, 96, 0, 99.83),
+        (
+            CageType::Ssm,
+            (48, 6, 8),
+            1057,
+            1344,
+            672,
+            336,
+            144,
+            96,
+            0,
+            81.11,
+        ),
+        (
+            CageType::Csm,
+            (48, 6, 5),
+            913,
+            1056,
+            528,
+            336,
+            144,
+            96,
+            0,
+            99.83,
+        ),
+        (
+            CageType::Cct,
+            (48, 6, 5),
+            913,
+            1056,
+            528,
+            336,
+            48,
+            96,
+            48,
+            99.83,
+        ),
+        (
+            CageType::Ccs,
+            (48, 6, 5),
+            1490,
+            1056,
+            528,
+            960,
+            144,
+            96,
+            0,
+            99.83,
+        ),
     ];
     for (t, (nt, nn, bn), nodes, net, panels, ropes, ties, ring, bottom, lambda) in rows {
         let m = CageParams::new(t).build().unwrap();
@@ -159,7 +215,10 @@ fn defaults_table() {
         assert_eq!(count(&m, "ropes").0, ropes, "{t:?}");
         assert_eq!(count(&m, "tie_lines").0, ties, "{t:?}");
         assert_eq!(count(&m, "top_ring").0 + count(&m, "top_links").0, ring);
-        let b = m.groups_named("bottom_ring").next().map_or(0, |g| g.lines.len());
+        let b = m
+            .groups_named("bottom_ring")
+            .next()
+            .map_or(0, |g| g.lines.len());
         assert_eq!(b, bottom, "{t:?}");
         let l = m.objects[0].net.as_ref().unwrap().lambda;
         assert!((l - lambda).abs() < 0.006, "{t:?}: λ = {l}");
@@ -173,11 +232,19 @@ fn ccs_centre_weight_and_cct_tube() {
     assert_eq!(c, m.nodes.len() - 1);
     assert!((m.nodes[c].z + 45.0).abs() < 1e-9); // −H − 2H
     assert_eq!(m.group(0, "sinkers").unwrap().nodes, vec![c]);
-    let w: f64 = m.weights.iter().filter(|w| w.node == c).map(|w| w.weight).sum();
+    let w: f64 = m
+        .weights
+        .iter()
+        .filter(|w| w.node == c)
+        .map(|w| w.weight)
+        .sum();
     assert!((w - 392.4 * 120.0).abs() < 1e-6);
     // Every bottom rope ends at the centre node.
     let ropes = &m.group(0, "ropes").unwrap().lines;
-    assert_eq!(ropes.iter().filter(|&&e| m.lines[e].nodes[1] == c).count(), 48);
+    assert_eq!(
+        ropes.iter().filter(|&&e| m.lines[e].nodes[1] == c).count(),
+        48
+    );
 
     let m = CageParams::new(CageType::Cct).build().unwrap();
     let ring = m.group(0, "bottom_ring").unwrap();
@@ -210,17 +277,26 @@ fn bad_inputs_name_key_value_and_range() {
     let mut p = CageParams::new(CageType::Ssm);
     p.depth = Some(-3.0);
     let e = err(&p);
-    assert!(e.contains("depth") && e.contains("-3") && e.contains("> 0"), "{e}");
+    assert!(
+        e.contains("depth") && e.contains("-3") && e.contains("> 0"),
+        "{e}"
+    );
 
     let mut p = CageParams::new(CageType::Ssm);
     p.element_length = Some(40.0);
     let e = err(&p);
-    assert!(e.contains("NN = round(15/40) = 0") && e.contains("element_length <= 30"), "{e}");
+    assert!(
+        e.contains("NN = round(15/40) = 0") && e.contains("element_length <= 30"),
+        "{e}"
+    );
 
     let mut p = CageParams::new(CageType::Csm);
     p.element_length = Some(60.0);
     let e = err(&p);
-    assert!(e.contains("NT") && e.contains("element_length <= 48"), "{e}");
+    assert!(
+        e.contains("NT") && e.contains("element_length <= 48"),
+        "{e}"
+    );
 
     let mut p = CageParams::new(CageType::Cct);
     p.bottom_ratio = Some(1.5);
@@ -239,7 +315,10 @@ fn bad_inputs_name_key_value_and_range() {
     let mut p = CageParams::new(CageType::Ccs);
     p.weight_depth = Some(2.0);
     let e = err(&p);
-    assert!(e.contains("weight_depth") && e.contains("cone_depth"), "{e}");
+    assert!(
+        e.contains("weight_depth") && e.contains("cone_depth"),
+        "{e}"
+    );
 
     let mut p = CageParams::new(CageType::Csm);
     p.sinker_weight_per_metre = Some(-1.0);
@@ -248,7 +327,10 @@ fn bad_inputs_name_key_value_and_range() {
     let mut p = CageParams::new(CageType::Csm);
     p.fixed = Some(vec!["collar".into()]);
     let e = err(&p);
-    assert!(e.contains("collar") && e.contains("top_ring") && e.contains("sinkers"), "{e}");
+    assert!(
+        e.contains("collar") && e.contains("top_ring") && e.contains("sinkers"),
+        "{e}"
+    );
 
     let mut p = CageParams::new(CageType::Csm);
     p.origins = Some(vec![[0.0, 0.0, 0.0], [30.0, 0.0, 0.0]]);
@@ -295,7 +377,15 @@ fn scene_table_deserialises_and_rejects_unknown_keys() {
     let m = p.build().unwrap();
     assert_eq!(m.nodes.len(), 2 * 1057);
     assert_eq!(count(&m, "fixed").2, 2 * 96);
-    assert_eq!(m.group(0, "ropes").unwrap().section.as_ref().unwrap().diameter, 0.04);
+    assert_eq!(
+        m.group(0, "ropes")
+            .unwrap()
+            .section
+            .as_ref()
+            .unwrap()
+            .diameter,
+        0.04
+    );
     let e = toml::from_str::<CageParams>("type = \"SSM\"\ndepht = 15\n")
         .unwrap_err()
         .to_string();
@@ -313,12 +403,20 @@ fn check_invariants(m: &Mesh, p: &CageParams, square: bool) {
     let c = p.circumference.unwrap();
     let h = p.depth.unwrap();
     let hc = p.cone_depth.unwrap();
-    let r_t = if square { c / 8.0 } else { c / (2.0 * std::f64::consts::PI) };
+    let r_t = if square {
+        c / 8.0
+    } else {
+        c / (2.0 * std::f64::consts::PI)
+    };
     let r_b = r_t * p.bottom_ratio.unwrap_or(1.0);
     let radial = |i: usize| {
         let q = m.nodes[i];
         let (dx, dy) = (q.x - o[0], q.y - o[1]);
-        if square { dx.abs().max(dy.abs()) } else { dx.hypot(dy) }
+        if square {
+            dx.abs().max(dy.abs())
+        } else {
+            dx.hypot(dy)
+        }
     };
     // No duplicate nodes (grid hash on 1 µm cells).
     let mut seen = std::collections::HashMap::new();
@@ -344,7 +442,10 @@ fn check_invariants(m: &Mesh, p: &CageParams, square: bool) {
         let ns = pan.nodes.as_slice();
         let cen: Vector3<f64> =
             ns.iter().map(|&i| m.nodes[i].coords).sum::<Vector3<f64>>() / ns.len() as f64;
-        assert!(a.dot(&(cen - centre)) > 0.0, "panel {k} normal points inwards");
+        assert!(
+            a.dot(&(cen - centre)) > 0.0,
+            "panel {k} normal points inwards"
+        );
     }
     // Closed circumference: every net node except the tip is on exactly two ring lines, and
     // every collar node on two top_ring lines.

@@ -55,7 +55,11 @@ fn check_fixture(m: &Mesh) {
     assert!((net.mean_twine_length - mean).abs() < 1e-9);
     assert!((net.lambda - mean / 25.87e-3).abs() < 1e-6);
     assert_eq!(m.fixed_nodes().len(), 5);
-    assert!(m.notices.iter().any(|n| n.contains("51 net twines derived")));
+    assert!(
+        m.notices
+            .iter()
+            .any(|n| n.contains("51 net twines derived"))
+    );
 }
 
 #[test]
@@ -63,7 +67,10 @@ fn msh22_ascii() {
     let m = import("net_v22.msh");
     check_fixture(&m);
     // Dense renumbering keeps the original tags.
-    assert_eq!(m.objects[0].source_node_tags, (1..=31).collect::<Vec<u64>>());
+    assert_eq!(
+        m.objects[0].source_node_tags,
+        (1..=31).collect::<Vec<u64>>()
+    );
 }
 
 #[test]
@@ -100,7 +107,11 @@ fn all_formats_agree() {
             v
         };
         let panels = |m: &Mesh| {
-            let mut v: Vec<Vec<usize>> = m.panels.iter().map(|p| p.nodes.as_slice().to_vec()).collect();
+            let mut v: Vec<Vec<usize>> = m
+                .panels
+                .iter()
+                .map(|p| p.nodes.as_slice().to_vec())
+                .collect();
             v.sort();
             v
         };
@@ -153,7 +164,10 @@ fn unknown_name_lists_valid_names_and_rename_fixes_it() {
     let s = text("net_v22.msh").replace("2 1 \"net\"", "2 1 \"netting\"");
     let e = parse_err("bad.msh", s.as_bytes());
     assert!(e.contains("line 10") && e.contains("netting"), "{e}");
-    assert!(e.contains("valid names") && e.contains("twines") && e.contains("rename"), "{e}");
+    assert!(
+        e.contains("valid names") && e.contains("twines") && e.contains("rename"),
+        "{e}"
+    );
     let raw = parse_msh(Path::new("bad.msh"), s.as_bytes()).unwrap();
     let m = import_raw(
         &GmshParams {
@@ -170,13 +184,19 @@ fn unknown_name_lists_valid_names_and_rename_fixes_it() {
     assert_eq!(parse_err("ok.msh", s.as_bytes()), "no error");
     let s = text("net_v22.msh").replace("1 4 \"ropes\"", "1 4 \"net_panels\"");
     let e = parse_err("dim.msh", s.as_bytes());
-    assert!(e.contains("dimension 1") && e.contains("needs dimension 2"), "{e}");
+    assert!(
+        e.contains("dimension 1") && e.contains("needs dimension 2"),
+        "{e}"
+    );
     // A physical tag without a name.
     let s = text("net_v22.msh")
         .replace("$PhysicalNames\n5\n", "$PhysicalNames\n4\n")
         .replace("1 4 \"ropes\"\n", "");
     let e = parse_err("noname.msh", s.as_bytes());
-    assert!(e.contains("physical group 4") && e.contains("no name"), "{e}");
+    assert!(
+        e.contains("physical group 4") && e.contains("no name"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -210,7 +230,10 @@ fn unsupported_inputs() {
     let s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0.5 0 0\n\
              $EndNodes\n$Elements\n1\n1 8 2 1 1 1 2 3\n$EndElements\n";
     let e = parse_err("o2.msh", s.as_bytes());
-    assert!(e.contains("line 12") && e.contains("type 8") && e.contains("second-order"), "{e}");
+    assert!(
+        e.contains("line 12") && e.contains("type 8") && e.contains("second-order"),
+        "{e}"
+    );
     // No physical groups at all → no usable group.
     let s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n\
              $Elements\n1\n1 1 2 0 1 1 2\n$EndElements\n";
@@ -221,7 +244,10 @@ fn unsupported_inputs() {
              $EndPhysicalNames\n$Nodes\n2\n1 0 0 0\n2 0 0 0\n$EndNodes\n\
              $Elements\n1\n7 1 2 1 1 1 2\n$EndElements\n";
     let e = parse_err("zero.msh", s.as_bytes());
-    assert!(e.contains("line 15") && e.contains("element 7") && e.contains("zero length"), "{e}");
+    assert!(
+        e.contains("line 15") && e.contains("element 7") && e.contains("zero length"),
+        "{e}"
+    );
     // Missing file.
     let e = import_gmsh(&GmshParams {
         file: "/nonexistent/net.msh".into(),
