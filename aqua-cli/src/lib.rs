@@ -31,5 +31,6 @@ impl std::error::Error for InputError {}
 
 /// True when the error (or anything in its chain) is an [`InputError`].
 pub fn is_input_error(err: &anyhow::Error) -> bool {
-    err.chain().any(|e| e.downcast_ref::<InputError>().is_some())
+    err.chain()
+        .any(|e| e.downcast_ref::<InputError>().is_some())
 }

@@ -22,8 +22,8 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
         _rest: toml::Table,
     }
     let text = read_text(path)?;
-    let table: toml::Table = toml::from_str(&text)
-        .map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
+    let table: toml::Table =
+        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
     let err = |e: toml::de::Error| InputError::new(format!("{}: {e}", path.display()));
     if table.contains_key("sea") {
         toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)

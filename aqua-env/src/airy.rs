@@ -65,7 +65,11 @@ impl Component {
 pub(crate) fn depth_functions(k: f64, z: f64, e: f64, inv_m: f64, inv_p: f64) -> (f64, f64, f64) {
     let ez = (k * z).exp();
     let second = if e == 0.0 { 0.0 } else { e / ez };
-    ((ez + second) * inv_m, (ez - second) * inv_m, (ez + second) * inv_p)
+    (
+        (ez + second) * inv_m,
+        (ez - second) * inv_m,
+        (ez + second) * inv_p,
+    )
 }
 
 /// The constants (E, 1/(1 − E), 1/(1 + E)) of one wave number.
@@ -208,7 +212,8 @@ impl LinearSum {
         let mut p = 0.0;
         for i in 0..self.amp.len() {
             let (c, s) = cs[i];
-            let (cz, sz, kz) = depth_functions(self.k[i], zs, self.e[i], self.inv_m[i], self.inv_p[i]);
+            let (cz, sz, kz) =
+                depth_functions(self.k[i], zs, self.e[i], self.inv_m[i], self.inv_p[i]);
             let wa = self.omega[i] * self.amp[i];
             let w2a = self.omega[i] * wa;
             let uh = wa * cz * c;

@@ -3,7 +3,9 @@
 //! [`Sea`] with its printed summary and warnings.
 
 use crate::airy::{Component, LinearSum};
-use crate::constants::{Constants, Depth, SEA_WATER_DENSITY, SEA_WATER_VISCOSITY, STANDARD_GRAVITY};
+use crate::constants::{
+    Constants, Depth, SEA_WATER_DENSITY, SEA_WATER_VISCOSITY, STANDARD_GRAVITY,
+};
 use crate::current::{Current, CurrentProfile, Schedule};
 use crate::dispersion::group_velocity;
 use crate::error::EnvError;
@@ -419,7 +421,11 @@ fn positive(key: &str, v: f64, what: &str) -> Result<f64, EnvError> {
     if v > 0.0 && v.is_finite() {
         Ok(v)
     } else {
-        Err(EnvError::range(key, v, format!("must be a finite number > 0 ({what})")))
+        Err(EnvError::range(
+            key,
+            v,
+            format!("must be a finite number > 0 ({what})"),
+        ))
     }
 }
 
@@ -459,9 +465,11 @@ impl SeaSpec {
         )?;
         let depth = match &self.depth {
             None => Depth::Infinite,
-            Some(DepthValue::Metres(h)) => {
-                Depth::Finite(positive("sea.depth", *h, "water depth in m, or \"infinite\"")?)
-            }
+            Some(DepthValue::Metres(h)) => Depth::Finite(positive(
+                "sea.depth",
+                *h,
+                "water depth in m, or \"infinite\"",
+            )?),
             Some(DepthValue::Word(w)) if w == "infinite" => Depth::Infinite,
             Some(DepthValue::Word(w)) => {
                 return Err(EnvError::range(
@@ -498,19 +506,27 @@ impl SeaSpec {
             CurrentKind::None => {
                 unused(&s.velocity, "sea.current.velocity", velocity_for)?;
                 unused(&s.points, "sea.current.points", points_for)?;
-                unused(&s.surface_velocity, "sea.current.surface_velocity", power_for)?;
+                unused(
+                    &s.surface_velocity,
+                    "sea.current.surface_velocity",
+                    power_for,
+                )?;
                 unused(&s.schedule, "sea.current.schedule", velocity_for)?;
                 return Ok(Current::none());
             }
             CurrentKind::Uniform => {
                 unused(&s.points, "sea.current.points", points_for)?;
-                unused(&s.surface_velocity, "sea.current.surface_velocity", power_for)?;
+                unused(
+                    &s.surface_velocity,
+                    "sea.current.surface_velocity",
+                    power_for,
+                )?;
                 unused(&s.exponent, "sea.current.exponent", power_for)?;
                 match (&s.velocity, &s.schedule) {
                     (Some(v), None) => CurrentProfile::Uniform(*v),
-                    (None, Some(sch)) => CurrentProfile::Uniform(
-                        sch.first().map(vec3).unwrap_or([0.0; 3]),
-                    ),
+                    (None, Some(sch)) => {
+                        CurrentProfile::Uniform(sch.first().map(vec3).unwrap_or([0.0; 3]))
+                    }
                     (Some(_), Some(_)) => {
                         return Err(EnvError::range(
                             "sea.current.schedule",
@@ -528,7 +544,11 @@ impl SeaSpec {
             }
             CurrentKind::Profile => {
                 unused(&s.velocity, "sea.current.velocity", velocity_for)?;
-                unused(&s.surface_velocity, "sea.current.surface_velocity", power_for)?;
+                unused(
+                    &s.surface_velocity,
+                    "sea.current.surface_velocity",
+                    power_for,
+                )?;
                 unused(&s.exponent, "sea.current.exponent", power_for)?;
                 unused(&s.schedule, "sea.current.schedule", velocity_for)?;
                 let pts = s.points.as_ref().ok_or_else(|| {
@@ -549,7 +569,10 @@ impl SeaSpec {
                     "kind = \"power_law\" needs surface_velocity = [ux, uy, uz] (m/s)",
                 )?;
                 let depth = c.depth.finite().ok_or_else(|| {
-                    EnvError::missing("sea.depth", "a power-law current needs a finite water depth")
+                    EnvError::missing(
+                        "sea.depth",
+                        "a power-law current needs a finite water depth",
+                    )
                 })?;
                 CurrentProfile::PowerLaw {
                     surface,
@@ -618,7 +641,11 @@ impl SeaSpec {
             unused(&w.period, "sea.waves.period", regular_only)?;
         }
         if w.kind != WaveKind::Components {
-            unused(&w.components, "sea.waves.components", "kind = \"components\"")?;
+            unused(
+                &w.components,
+                "sea.waves.components",
+                "kind = \"components\"",
+            )?;
         }
         if w.kind != WaveKind::Irregular {
             unused(&w.spectrum, "sea.waves.spectrum", "kind = \"irregular\"")?;
@@ -636,12 +663,20 @@ impl SeaSpec {
             WaveKind::Airy | WaveKind::Stokes2 => {
                 let h = positive(
                     "sea.waves.height",
-                    need(w.height, "sea.waves.height", "regular waves need height (m)")?,
+                    need(
+                        w.height,
+                        "sea.waves.height",
+                        "regular waves need height (m)",
+                    )?,
                     "crest-to-trough height in m",
                 )?;
                 let t = positive(
                     "sea.waves.period",
-                    need(w.period, "sea.waves.period", "regular waves need period (s)")?,
+                    need(
+                        w.period,
+                        "sea.waves.period",
+                        "regular waves need period (s)",
+                    )?,
                     "period in s",
                 )?;
                 let comp = Component::new(h / 2.0, t, direction, phase, c.depth, c.gravity)?;
@@ -681,8 +716,16 @@ impl SeaSpec {
                 }
                 let mut comps = Vec::with_capacity(list.len());
                 for (i, row) in list.iter().enumerate() {
-                    positive(&format!("sea.waves.components[{i}] a"), row[0], "amplitude in m")?;
-                    positive(&format!("sea.waves.components[{i}] T"), row[1], "period in s")?;
+                    positive(
+                        &format!("sea.waves.components[{i}] a"),
+                        row[0],
+                        "amplitude in m",
+                    )?;
+                    positive(
+                        &format!("sea.waves.components[{i}] T"),
+                        row[1],
+                        "period in s",
+                    )?;
                     let comp = Component::new(
                         row[0],
                         row[1],
@@ -691,7 +734,8 @@ impl SeaSpec {
                         c.depth,
                         c.gravity,
                     )?;
-                    let s = regular_summary(&comp, &Stokes2::new(comp, c.depth, c.gravity), c.depth);
+                    let s =
+                        regular_summary(&comp, &Stokes2::new(comp, c.depth, c.gravity), c.depth);
                     regular_warnings(&s, WaveKind::Components, &mut warnings);
                     regular.push(s);
                     comps.push(comp);
@@ -768,7 +812,11 @@ impl SeaSpec {
             current_ramp_time: self.current.ramp_time,
             waves: w.kind,
             stretching,
-            wave_ramp_time: if w.kind == WaveKind::None { 0.0 } else { w.ramp_time },
+            wave_ramp_time: if w.kind == WaveKind::None {
+                0.0
+            } else {
+                w.ramp_time
+            },
             regular,
             irregular,
             warnings,
@@ -898,7 +946,10 @@ fn irregular_spec(
             unused(&sp.tp, &key("tp"), param)?;
             unused(&sp.gamma, &key("gamma"), "shape = \"jonswap\"")?;
             let t = sp.table.as_ref().ok_or_else(|| {
-                EnvError::missing(key("table"), "shape = \"table\" needs table = [[omega, S], ...]")
+                EnvError::missing(
+                    key("table"),
+                    "shape = \"table\" needs table = [[omega, S], ...]",
+                )
             })?;
             if t.len() < 2 {
                 return Err(EnvError::range(
@@ -985,7 +1036,8 @@ mod tests {
 
     fn parse(s: &str) -> Result<(Sea, SeaSummary), String> {
         let spec: SeaSpec = toml::from_str(s).map_err(|e| e.to_string())?;
-        spec.build(&BuildOptions::default()).map_err(|e| e.to_string())
+        spec.build(&BuildOptions::default())
+            .map_err(|e| e.to_string())
     }
 
     #[test]
@@ -1020,19 +1072,25 @@ ramp_time = 10.0
 
     #[test]
     fn unknown_key_is_rejected_with_its_name() {
-        let e = parse("depth = 10\n[waves]\nkind = \"airy\"\nheigth = 2.0\nperiod = 8\n").unwrap_err();
+        let e =
+            parse("depth = 10\n[waves]\nkind = \"airy\"\nheigth = 2.0\nperiod = 8\n").unwrap_err();
         assert!(e.contains("heigth"), "{e}");
     }
 
     #[test]
     fn bad_values_name_key_and_range() {
-        let e = parse("depth = 10\n[waves]\nkind = \"airy\"\nheight = -2.0\nperiod = 8\n").unwrap_err();
-        assert!(e.contains("sea.waves.height") && e.contains("-2") && e.contains("> 0"), "{e}");
+        let e =
+            parse("depth = 10\n[waves]\nkind = \"airy\"\nheight = -2.0\nperiod = 8\n").unwrap_err();
+        assert!(
+            e.contains("sea.waves.height") && e.contains("-2") && e.contains("> 0"),
+            "{e}"
+        );
         let e = parse("[waves]\nkind = \"airy\"\nheight = 2.0\nperiod = 8\n").unwrap_err();
         assert!(e.contains("sea.depth"), "{e}");
         let e = parse("depth = 0\n").unwrap_err();
         assert!(e.contains("sea.depth"), "{e}");
-        let e = parse("depth = 10\n[waves]\nkind = \"airy\"\nheight = 2\nperiod = 0\n").unwrap_err();
+        let e =
+            parse("depth = 10\n[waves]\nkind = \"airy\"\nheight = 2\nperiod = 0\n").unwrap_err();
         assert!(e.contains("sea.waves.period"), "{e}");
         let e = parse("depth = 10\n[current]\nkind = \"uniform\"\n").unwrap_err();
         assert!(e.contains("sea.current.velocity"), "{e}");
@@ -1048,7 +1106,11 @@ ramp_time = 10.0
         let (_, s) = parse(&base(2.0)).unwrap();
         assert!(s.warnings.is_empty(), "{:?}", s.warnings);
         let (_, s) = parse(&base(6.0)).unwrap();
-        assert!(s.warnings.iter().any(|w| w.contains("secondary crest")), "{:?}", s.warnings);
+        assert!(
+            s.warnings.iter().any(|w| w.contains("secondary crest")),
+            "{:?}",
+            s.warnings
+        );
     }
 
     #[test]
@@ -1065,10 +1127,9 @@ ramp_time = 10.0
 
     #[test]
     fn jonswap_outside_dnv_range_warns() {
-        let (_, s) = parse(
-            "depth = 60\n[waves]\nkind = \"irregular\"\n[waves.spectrum]\nhs = 2\ntp = 8\n",
-        )
-        .unwrap();
+        let (_, s) =
+            parse("depth = 60\n[waves]\nkind = \"irregular\"\n[waves.spectrum]\nhs = 2\ntp = 8\n")
+                .unwrap();
         assert!(s.warnings.iter().any(|w| w.contains("JONSWAP range")));
         assert_eq!(s.irregular.as_ref().unwrap().gamma, Some(1.0));
         assert_eq!(s.stretching, Some(Stretching::Wheeler));

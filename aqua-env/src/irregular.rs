@@ -220,11 +220,8 @@ pub fn discretise(
                 (w, (2.0 * scale * m0_band / n as f64).sqrt())
             }
         };
-        let direction = spec.mean_direction
-            + spreading
-                .as_ref()
-                .map(|d| d.inverse_cdf(v))
-                .unwrap_or(0.0);
+        let direction =
+            spec.mean_direction + spreading.as_ref().map(|d| d.inverse_cdf(v)).unwrap_or(0.0);
         let k = wave_number(omega, depth, g)?;
         components.push(Component {
             amplitude,
@@ -234,7 +231,10 @@ pub fn discretise(
             phase: 2.0 * PI * p,
         });
     }
-    let m0_retained = components.iter().map(|c| 0.5 * c.amplitude * c.amplitude).sum();
+    let m0_retained = components
+        .iter()
+        .map(|c| 0.5 * c.amplitude * c.amplitude)
+        .sum();
     Ok(Discretisation {
         components,
         omega_lo: w_lo,
@@ -283,8 +283,18 @@ mod tests {
 
     #[test]
     fn band_drops_the_requested_energy() {
-        let d = discretise(&spec(Spacing::RandomInBin, 1), Depth::Finite(60.0), 9.81, 0.0).unwrap();
-        assert!((d.dropped_fraction - 1e-3).abs() < 2e-5, "{}", d.dropped_fraction);
+        let d = discretise(
+            &spec(Spacing::RandomInBin, 1),
+            Depth::Finite(60.0),
+            9.81,
+            0.0,
+        )
+        .unwrap();
+        assert!(
+            (d.dropped_fraction - 1e-3).abs() < 2e-5,
+            "{}",
+            d.dropped_fraction
+        );
         assert!(d.omega_lo < 2.0 * PI / 8.0 && d.omega_hi > 2.0 * PI / 8.0);
         // retained variance ≈ the band energy (random-in-bin quadrature of S)
         let m0 = Spectrum::Jonswap {

@@ -111,7 +111,7 @@ pub fn welch(x: &[f64], dt: f64, segment: usize) -> Option<SpectrumEstimate> {
     let mut density = Vec::with_capacity(nbins);
     for (k, a) in acc.iter().enumerate() {
         // One-sided PSD per Hz, then per rad/s.
-        let two = if k == 0 || (segment % 2 == 0 && k == nbins - 1) {
+        let two = if k == 0 || (segment.is_multiple_of(2) && k == nbins - 1) {
             1.0
         } else {
             2.0

@@ -314,7 +314,11 @@ impl Sea {
     /// # Panics
     /// If `points` and `out` differ in length (a programming error, not user input).
     pub fn eval(&self, t: f64, phase: Phase, points: &[[f64; 3]], out: &mut [FlowPoint]) {
-        assert_eq!(points.len(), out.len(), "points and out must have equal length");
+        assert_eq!(
+            points.len(),
+            out.len(),
+            "points and out must have equal length"
+        );
         let ncomp = match &self.waves {
             Waves::Linear { sum, .. } => sum.len().max(1),
             _ => 1,

@@ -39,12 +39,7 @@ impl Cos2s {
         for c in &mut cdf {
             *c /= total;
         }
-        Self {
-            s,
-            norm,
-            beta,
-            cdf,
-        }
+        Self { s, norm, beta, cdf }
     }
 
     /// The exponent s.

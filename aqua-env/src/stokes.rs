@@ -107,7 +107,11 @@ impl Stokes2 {
         let uh = wa * cz * c1 + q * c2z * c2;
         let ah = w2a * cz * s1 + qa * c2z * s2;
         RawKinematics {
-            vel: [uh * self.cos_b, uh * self.sin_b, wa * sz * s1 + q * s2z * s2],
+            vel: [
+                uh * self.cos_b,
+                uh * self.sin_b,
+                wa * sz * s1 + q * s2z * s2,
+            ],
             acc: [
                 ah * self.cos_b,
                 ah * self.sin_b,

@@ -38,7 +38,10 @@ fn div_curl(s: &Sea, p: [f64; 3], t: f64) -> (f64, f64) {
     }
     let div = g[0][0] + g[1][1] + g[2][2];
     let curl = [g[2][1] - g[1][2], g[0][2] - g[2][0], g[1][0] - g[0][1]];
-    (div, (curl[0].powi(2) + curl[1].powi(2) + curl[2].powi(2)).sqrt())
+    (
+        div,
+        (curl[0].powi(2) + curl[1].powi(2) + curl[2].powi(2)).sqrt(),
+    )
 }
 
 #[test]
@@ -201,9 +204,11 @@ fn wheeler_and_linear_agree_below_the_trough_to_order_a() {
 
 #[test]
 fn stokes2_in_10m_depth() {
-    let ok = sea("gravity = 9.81\ndepth = 10\n[waves]\nkind = \"stokes2\"\nheight = 2\nperiod = 8\n").1;
+    let ok =
+        sea("gravity = 9.81\ndepth = 10\n[waves]\nkind = \"stokes2\"\nheight = 2\nperiod = 8\n").1;
     assert!(!ok.warnings.iter().any(|w| w.contains("secondary crest")));
-    let warn = sea("gravity = 9.81\ndepth = 10\n[waves]\nkind = \"stokes2\"\nheight = 6\nperiod = 8\n").1;
+    let warn =
+        sea("gravity = 9.81\ndepth = 10\n[waves]\nkind = \"stokes2\"\nheight = 6\nperiod = 8\n").1;
     assert!(warn.warnings.iter().any(|w| w.contains("secondary crest")));
 }
 

@@ -131,7 +131,9 @@ fn parse_point(s: &str) -> anyhow::Result<[f64; 3]> {
         .collect::<Result<_, _>>()
         .map_err(|_| input(format!("--at {s}: expected three numbers x,y,z in m")))?;
     if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
-        return Err(input(format!("--at {s}: expected three finite numbers x,y,z in m")));
+        return Err(input(format!(
+            "--at {s}: expected three finite numbers x,y,z in m"
+        )));
     }
     Ok([v[0], v[1], v[2]])
 }
@@ -273,7 +275,9 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         None => SeaSpec::default(),
     };
     let spec = apply_flags(base, &a)?;
-    if spec.waves.kind == WaveKind::None && spec.current.kind == CurrentKind::None && a.scene.is_none()
+    if spec.waves.kind == WaveKind::None
+        && spec.current.kind == CurrentKind::None
+        && a.scene.is_none()
     {
         return Err(input(
             "no sea given: use --scene FILE (its [sea] table) or flags such as \
@@ -281,9 +285,15 @@ pub fn run(a: Args) -> anyhow::Result<()> {
                 .into(),
         ));
     }
-    let points: Vec<[f64; 3]> = a.at.iter().map(|s| parse_point(s)).collect::<Result<_, _>>()?;
+    let points: Vec<[f64; 3]> =
+        a.at.iter()
+            .map(|s| parse_point(s))
+            .collect::<Result<_, _>>()?;
     if !(a.dt > 0.0 && a.dt.is_finite()) {
-        return Err(input(format!("--dt {}: must be a time step > 0 in s", a.dt)));
+        return Err(input(format!(
+            "--dt {}: must be a time step > 0 in s",
+            a.dt
+        )));
     }
     if !(a.duration >= 0.0 && a.duration.is_finite()) {
         return Err(input(format!("--duration {}: must be >= 0 s", a.duration)));
@@ -303,9 +313,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             .unwrap_or_default();
         input(format!("{where_}{e}"))
     })?;
-    let measured = summary.irregular.as_ref().and_then(|irr| {
-        measure(&sea, a.record, irr.tp, summary.wave_ramp_time)
-    });
+    let measured = summary
+        .irregular
+        .as_ref()
+        .and_then(|irr| measure(&sea, a.record, irr.tp, summary.wave_ramp_time));
     if a.json {
         let report = Report {
             summary: &summary,
@@ -367,7 +378,16 @@ pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
         let _ = writeln!(
             o,
             "  {:>8} {:>8} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8} {:>8} {:>8}",
-            "H [m]", "T [s]", "w [rad/s]", "k [1/m]", "L [m]", "c [m/s]", "kh", "H/L", "Ursell", "dir"
+            "H [m]",
+            "T [s]",
+            "w [rad/s]",
+            "k [1/m]",
+            "L [m]",
+            "c [m/s]",
+            "kh",
+            "H/L",
+            "Ursell",
+            "dir"
         );
         for r in &s.regular {
             let _ = writeln!(
