@@ -16,12 +16,15 @@ struct Cli {
 enum Command {
     /// Preview a sea state: summary, CSV time series of elevation and kinematics.
     Waves(commands::waves::Args),
+    /// Build a cage, panel or line or import a gmsh mesh; report groups, λ, diameters; write VTK.
+    Mesh(commands::mesh::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Waves(a) => commands::waves::run(a),
+        Command::Mesh(a) => commands::mesh::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

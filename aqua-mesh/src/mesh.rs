@@ -592,7 +592,7 @@ impl Mesh {
                 .iter()
                 .filter(|p| matches!(p.nodes, PanelNodes::Tri(_)))
                 .count(),
-            total_weight: self.weights.iter().map(|w| w.weight).sum(),
+            total_weight: self.weights.iter().fold(0.0, |a, w| a + w.weight),
             objects: self
                 .objects
                 .iter()
@@ -624,8 +624,7 @@ impl Mesh {
                                 .iter()
                                 .filter(|w| self.groups[w.group].name == g.name)
                                 .filter(|w| self.groups[w.group].object == g.object)
-                                .map(|w| w.weight)
-                                .sum(),
+                                .fold(0.0, |a, w| a + w.weight),
                             diameter: g.section.as_ref().map(|s| s.diameter),
                             elastic_diameter: g.section.as_ref().map(|s| s.elastic_diameter),
                             hydro_diameter: g.section.as_ref().map(|s| s.hydro_diameter),

@@ -1,3 +1,4 @@
 //! One module per `aqua` subcommand.
 
+pub mod mesh;
 pub mod waves;

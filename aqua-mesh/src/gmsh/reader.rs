@@ -474,6 +474,7 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
                 .map(|(rest, _)| (rest.as_ptr() as usize).saturating_sub(bytes.as_ptr() as usize));
             let mut ctx: Vec<String> = e.filter_msh_errors().map(|(_, k)| k.to_string()).collect();
             ctx.reverse();
+            ctx.dedup();
             Err((offset, ctx.join(": ")))
         }
     });
@@ -485,7 +486,7 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
                 (Some(o), true) => FilePos::Byte(o),
                 (None, _) => FilePos::File,
             };
-            let at_end = offset.is_some_and(|o| o >= bytes.len());
+            let at_end = offset.is_some_and(|o| o + 128 >= bytes.len());
             return Err(gerr(
                 path,
                 pos,
