@@ -27,7 +27,8 @@ pub(crate) struct CableEval {
 
 /// Evaluates element `e` with node positions/velocities. `damping` enables axial damping
 /// (off in statics); `extra_ca` adds a damping coefficient [N·s] (stiffness-proportional
-/// Rayleigh damping a_K·EA).
+/// Rayleigh damping a_K·EA); `clamp_geometric` uses max(T, 0) in the geometric stiffness of
+/// slack elements (s < 1).
 #[inline]
 pub(crate) fn evaluate(
     e: &Cable,
@@ -37,6 +38,7 @@ pub(crate) fn evaluate(
     vb: [f64; 3],
     damping: bool,
     extra_ca: f64,
+    clamp_geometric: bool,
 ) -> CableEval {
     let dx = [xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]];
     let l = (dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]).sqrt();
@@ -64,7 +66,11 @@ pub(crate) fn evaluate(
     };
     let t = s * (e.ea * eps + ca * eps_dot);
     let km = s * e.ea / e.l0;
-    let kg = t / l;
+    let kg = if clamp_geometric && s < 1.0 {
+        t.max(0.0) / l
+    } else {
+        t / l
+    };
     let cm = s * ca / e.l0;
     let kd = s * ca / (e.l0 * l);
     for i in 0..3 {
@@ -123,17 +129,17 @@ mod tests {
             let xa = [0.1, -0.2, 0.3];
             let xb = [xa[0] + dx[0], xa[1] + dx[1], xa[2] + dx[2]];
             let va = [0.0; 3];
-            let ev = evaluate(&e, xa, xb, va, vb, true, 0.0);
+            let ev = evaluate(&e, xa, xb, va, vb, true, 0.0, false);
             let h = 1e-6;
             for j in 0..3 {
                 let mut xp = xb; xp[j] += h;
                 let mut xm = xb; xm[j] -= h;
-                let fp = evaluate(&e, xa, xp, va, vb, true, 0.0).force_b;
-                let fm = evaluate(&e, xa, xm, va, vb, true, 0.0).force_b;
+                let fp = evaluate(&e, xa, xp, va, vb, true, 0.0, false).force_b;
+                let fm = evaluate(&e, xa, xm, va, vb, true, 0.0, false).force_b;
                 let mut vp = vb; vp[j] += h;
                 let mut vm = vb; vm[j] -= h;
-                let gp = evaluate(&e, xa, xb, va, vp, true, 0.0).force_b;
-                let gm = evaluate(&e, xa, xb, va, vm, true, 0.0).force_b;
+                let gp = evaluate(&e, xa, xb, va, vp, true, 0.0, false).force_b;
+                let gm = evaluate(&e, xa, xb, va, vm, true, 0.0, false).force_b;
                 for i in 0..3 {
                     let kfd = (fp[i] - fm[i]) / (2.0 * h);
                     let cfd = (gp[i] - gm[i]) / (2.0 * h);
@@ -171,6 +177,11 @@ mod tests {
         );
         assert!((ev.tension - 2e4 * 0.1).abs() < 1e-9);
         assert!((strain_energy(&e, 0.1) - 0.5 * 2e4 * 0.01 * 1.3).abs() < 1e-9);
-        assert!(evaluate(&e, [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], false, 0.0).bad);
+        assert!(
+            evaluate(
+                &e, [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], false, 0.0, false
+            )
+            .bad
+        );
     }
 }

@@ -201,6 +201,8 @@ pub struct DynamicSolver<'m> {
     n_steps: usize,
     total_iterations: usize,
     last_reaction: Vec<[f64; 3]>,
+    clamp: bool,
+    mv: Vec<[f64; 3]>,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -273,6 +275,8 @@ impl<'m> DynamicSolver<'m> {
             n_steps: 0,
             total_iterations: 0,
             last_reaction: vec![[0.0; 3]; n],
+            clamp: false,
+            mv: vec![[0.0; 3]; n],
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -315,6 +319,7 @@ impl<'m> DynamicSolver<'m> {
             consistent_mass: self.st.mass_matrix == MassMatrix::Consistent,
             rayleigh: (self.st.rayleigh[0], self.st.rayleigh[1]),
             fd_dfdx: self.st.fd_position_jacobian,
+            clamp_geometric: self.clamp,
         }
     }
 
@@ -357,7 +362,7 @@ impl<'m> DynamicSolver<'m> {
         self.outputs.update(model, &self.sys, true);
         let n = model.n_nodes();
         // Kinetic energy with structural + added mass.
-        let mut mv = vec![[0.0; 3]; n];
+        let mut mv = std::mem::take(&mut self.mv);
         crate::system::mul_mass(
             model,
             self.st.mass_matrix == MassMatrix::Consistent,
@@ -410,6 +415,7 @@ impl<'m> DynamicSolver<'m> {
             + self.energies.support_work
             - (ek + u - self.e0)
             - self.energies.damping_dissipation;
+        self.mv = mv;
         self.power_prev = power;
         self.q_prev.copy_from_slice(&self.sys.q);
         self.fext_prev.copy_from_slice(&self.sys.fext);
@@ -443,6 +449,7 @@ impl<'m> DynamicSolver<'m> {
             }
             match self.attempt(provider, h) {
                 Ok((iters, hist)) => {
+                    self.clamp = false;
                     self.total_iterations += iters;
                     self.n_steps += 1;
                     std::mem::swap(&mut self.state.x, &mut self.x1);
@@ -482,6 +489,12 @@ impl<'m> DynamicSolver<'m> {
                 Err(fail) => {
                     retries += 1;
                     self.good_steps = 0;
+                    if !self.clamp && self.sys.cable.iter().any(|c| c.switch < 1.0) {
+                        // Retry the same step with T ≥ 0 in the slack elements' geometric term.
+                        self.clamp = true;
+                        continue;
+                    }
+                    self.clamp = false;
                     self.dt_cur = 0.5 * h.min(self.dt_cur);
                     if self.dt_cur < dt_min {
                         return Err(self.step_failure(provider, h, dt_min, fail));

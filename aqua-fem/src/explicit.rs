@@ -219,6 +219,7 @@ impl<'m> ExplicitSolver<'m> {
             consistent_mass: false,
             rayleigh: (0.0, 0.0),
             fd_dfdx: false,
+            clamp_geometric: false,
         };
         self.sys.evaluate(
             model,
@@ -310,6 +311,7 @@ impl<'m> ExplicitSolver<'m> {
             consistent_mass: false,
             rayleigh: (0.0, 0.0),
             fd_dfdx: false,
+            clamp_geometric: false,
         };
         self.sys
             .evaluate(model, provider, x, v, &self.acc[slot], &o)?;

@@ -220,14 +220,13 @@ pub fn solve_static<P: LoadProvider + ?Sized>(
     };
     let mut report = StaticReport::default();
     let t = settings.time;
-    // Initial evaluation for the stabilisation weights.
-    ctx.eval_at_x(0.0, true)?;
-    ctx.update_stabilisation();
+    let eps0 = settings.stabilisation;
+    let mut eps = eps0;
     let mut s_acc = 0.0;
     let mut ds = 1.0 / settings.load_steps as f64;
     let mut x_acc = ctx.x.clone();
-    while s_acc < 1.0 {
-        let s = if s_acc + ds > 1.0 - 1e-12 {
+    loop {
+        let s = if s_acc >= 1.0 || s_acc + ds > 1.0 - 1e-12 {
             1.0
         } else {
             s_acc + ds
@@ -235,58 +234,69 @@ pub fn solve_static<P: LoadProvider + ?Sized>(
         ctx.x.copy_from_slice(&x_acc);
         apply_constraints(model, t, s, &mut ctx.x);
         ctx.x_ref.copy_from_slice(&x_acc);
-        match ctx.newton(s) {
+        ctx.update_stabilisation(eps);
+        let res = ctx.newton(s);
+        if std::env::var("AQUA_FEM_DEBUG").is_ok() {
+            match &res {
+                Ok((it, h)) => eprintln!("s={s:.5} eps={eps:.1e} ok it={it} {h:?}"),
+                Err(f) => eprintln!("s={s:.5} eps={eps:.1e} FAIL {} {:?}", f.reason, f.history),
+            }
+        }
+        match res {
             Ok((iters, hist)) => {
-                report.increments += 1;
                 report.last_residual_history = hist;
+                let fs = ctx.stabilisation_force_norm();
                 x_acc.copy_from_slice(&ctx.x);
+                if s_acc >= 1.0 {
+                    report.pseudo_steps += 1;
+                } else {
+                    report.increments += 1;
+                }
                 s_acc = s;
-                ctx.update_stabilisation();
+                if s >= 1.0 && fs <= settings.tol * ctx.f_ref {
+                    break;
+                }
+                if report.pseudo_steps >= settings.max_pseudo_steps {
+                    return Err(ctx.failure(
+                        1.0,
+                        0.0,
+                        NewtonFail {
+                            reason: format!(
+                                "stabilisation force {fs:.3e} N still above tolerance after {} \
+                                 pseudo-steps (a part of the structure may be unsupported or \
+                                 have no lateral stiffness)",
+                                settings.max_pseudo_steps
+                            ),
+                            history: vec![],
+                        },
+                    ));
+                }
                 if iters <= 5 {
-                    ds = (2.0 * ds).min(1.0 - s_acc);
+                    if s_acc < 1.0 {
+                        ds = (2.0 * ds).min(1.0 - s_acc);
+                    }
+                    // Easy step: trust the model more (pseudo-transient continuation).
+                    eps = (0.25 * eps).max(1e-12 * eps0);
                 }
             }
             Err(f) => {
                 report.rejected_increments += 1;
-                ds *= 0.5;
-                if ds < settings.min_load_step {
+                let give_up = if s_acc < 1.0 {
+                    ds *= 0.5;
+                    ds < settings.min_load_step
+                } else {
+                    eps0 == 0.0 || eps > 1e3 * eps0
+                };
+                if give_up {
                     return Err(ctx.failure(s, ds, f));
                 }
-                // Restore the accepted state.
+                eps = if eps0 > 0.0 {
+                    (4.0 * eps).max(eps0)
+                } else {
+                    0.0
+                };
                 ctx.x.copy_from_slice(&x_acc);
                 ctx.eval_at_x(s_acc, false)?;
-                ctx.update_stabilisation();
-            }
-        }
-    }
-    // Pseudo-steps until the stabilisation force itself is within tolerance.
-    if settings.stabilisation > 0.0 {
-        loop {
-            let fs = ctx.stabilisation_force_norm();
-            if fs <= settings.tol * ctx.f_ref {
-                break;
-            }
-            if report.pseudo_steps >= settings.max_pseudo_steps {
-                return Err(ctx.failure(
-                    1.0,
-                    0.0,
-                    NewtonFail {
-                        reason: format!(
-                            "stabilisation force {fs:.3e} N still above tolerance after {} \
-                             pseudo-steps (a part of the structure may be unsupported or have \
-                             no lateral stiffness)",
-                            settings.max_pseudo_steps
-                        ),
-                        history: vec![],
-                    },
-                ));
-            }
-            ctx.x_ref.copy_from_slice(&ctx.x);
-            ctx.update_stabilisation();
-            report.pseudo_steps += 1;
-            match ctx.newton(1.0) {
-                Ok((_, hist)) => report.last_residual_history = hist,
-                Err(f) => return Err(ctx.failure(1.0, 0.0, f)),
             }
         }
     }
@@ -336,6 +346,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
             consistent_mass: false,
             rayleigh: (0.0, 0.0),
             fd_dfdx: self.st.fd_position_jacobian,
+            clamp_geometric: true,
         };
         let x = if trial { &self.x_trial } else { &self.x };
         self.sys
@@ -347,15 +358,16 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
     }
 
     /// D_i = Σ s_e·EA/L0 over the node's elements, from the last evaluation.
-    fn update_stabilisation(&mut self) {
+    /// D_i = ε·Σ EA/L0 over the node's elements. The axial stiffness is used whether the
+    /// element is taut or slack: s·EA/L0 would vanish on slack parts, exactly where the
+    /// pseudo-viscous term is needed.
+    fn update_stabilisation(&mut self, eps: f64) {
         self.dstab.iter_mut().for_each(|d| *d = 0.0);
-        for (e, c) in self.model.elements().iter().zip(&self.sys.cable) {
-            let k = c.switch * e.ea / e.l0;
+        for e in self.model.elements() {
+            let k = eps * e.ea / e.l0;
             self.dstab[e.a] += k;
             self.dstab[e.b] += k;
         }
-        let eps = self.st.stabilisation;
-        self.dstab.iter_mut().for_each(|d| *d *= eps);
     }
 
     fn stabilisation_force_norm(&self) -> f64 {
@@ -461,6 +473,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
             // Backtracking line search (Armijo 1e-4, halving to 1/32).
             let mut lambda = 1.0;
             let mut best: Option<(f64, f64)> = None;
+            let mut full_r: Option<f64> = None;
             let mut accepted = false;
             loop {
                 self.x_trial.copy_from_slice(&self.x);
@@ -473,6 +486,9 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
                 } else {
                     f64::INFINITY
                 };
+                if lambda == 1.0 && rt.is_finite() {
+                    full_r = Some(rt);
+                }
                 if rt.is_finite() && best.is_none_or(|(_, b)| rt < b) {
                     best = Some((lambda, rt));
                 }
@@ -486,6 +502,13 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
                 }
             }
             if !accepted {
+                // No Armijo point: accept the full (capped) step if it does not raise the
+                // residual much (slack parts falling into place), else the best point.
+                if let Some(r1) = full_r
+                    && r1 <= 2.0 * rn
+                {
+                    best = Some((1.0, r1));
+                }
                 let Some((lb, _)) = best else {
                     return Err(fail(
                         "no finite residual along the Newton direction (degenerate element)".into(),

@@ -39,6 +39,8 @@ pub(crate) struct EvalOptions {
     pub rayleigh: (f64, f64),
     /// Form a missing ∂f_h/∂x by finite differences (otherwise it is omitted).
     pub fd_dfdx: bool,
+    /// Use max(T, 0) in the geometric stiffness (robust tangent for slack-dominated states).
+    pub clamp_geometric: bool,
 }
 
 /// Sparse LU with a symbolic factorisation computed once.
@@ -305,9 +307,19 @@ impl System {
         let elements = model.elements();
         let damping = o.dynamic;
         let a_k = if o.dynamic { o.rayleigh.1 } else { 0.0 };
+        let clamp = o.clamp_geometric;
         let kernel = |(i, out): (usize, &mut CableEval)| {
             let e = &elements[i];
-            *out = cable::evaluate(e, x[e.a], x[e.b], v[e.a], v[e.b], damping, a_k * e.ea);
+            *out = cable::evaluate(
+                e,
+                x[e.a],
+                x[e.b],
+                v[e.a],
+                v[e.b],
+                damping,
+                a_k * e.ea,
+                clamp,
+            );
         };
         if elements.len() >= PAR_THRESHOLD {
             self.cable.par_iter_mut().enumerate().for_each(kernel);

@@ -1,0 +1,332 @@
+//! Static oracles (fem.md §16): axial bar, elastic catenary, touchdown, Newton order, errors.
+
+mod common;
+use aqua_fem::*;
+use common::*;
+
+fn env_air() -> Environment {
+    Environment::default()
+}
+
+#[test]
+fn axial_bar_end_load_exact_for_any_mesh() {
+    for n in [1, 3, 7] {
+        let mut env = env_air();
+        env.gravity = 0.0;
+        let mut b = ModelBuilder::new(env);
+        let g = b.add_group("bar", CableSection::new(1e6, 1.0)).unwrap();
+        let nodes = add_line(&mut b, [0.0, 0.0, 10.0], [0.0, 0.0, 0.0], n, 10.0, g, 0.0);
+        b.fix(nodes[0], Dofs::ALL).unwrap();
+        let tip = *nodes.last().unwrap();
+        b.add_point_body(PointBody {
+            node: tip,
+            mass: 0.0,
+            force: [0.0, 0.0, -1000.0],
+            seabed_stiffness: 0.0,
+        })
+        .unwrap();
+        let m = b.build().unwrap();
+        let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+        let delta = -sol.state.x[tip][2];
+        assert!(
+            (delta - 0.01).abs() < 1e-8,
+            "n={n}: tip displacement {delta}"
+        );
+        assert!((sol.outputs.reaction[nodes[0]][2] - 1000.0).abs() < 1e-3);
+        for t in &sol.outputs.tension {
+            assert!((t - 1000.0).abs() < 1e-3);
+        }
+    }
+}
+
+#[test]
+fn axial_bar_own_weight_exact_at_nodes() {
+    let w = 5.0;
+    let mut b = ModelBuilder::new(env_air());
+    let g = b
+        .add_group("bar", CableSection::new(1e6, w / DEFAULT_GRAVITY))
+        .unwrap();
+    let nodes = add_line(&mut b, [0.0, 0.0, 10.0], [0.0, 0.0, 0.0], 10, 10.0, g, 0.0);
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    let tip = *nodes.last().unwrap();
+    let delta = -sol.state.x[tip][2];
+    assert!(
+        (delta - w * 100.0 / (2.0 * 1e6)).abs() < 1e-9,
+        "tip {delta}"
+    );
+    // Nodal displacement at distance s from the top: w(Ls − s²/2)/EA, exact with lumped loads.
+    for (i, &nd) in nodes.iter().enumerate() {
+        let s = i as f64;
+        let u = w * (10.0 * s - s * s / 2.0) / 1e6;
+        assert!((10.0 - s - sol.state.x[nd][2] - u).abs() < 1e-9);
+    }
+    assert!(
+        (sol.outputs.reaction[nodes[0]][2] - 50.0).abs() < 1e-4,
+        "{:?} {:?}",
+        sol.outputs.reaction[nodes[0]],
+        sol.report
+    );
+}
+
+fn catenary_case(n: usize, sag0: f64, tol: f64) -> (f64, f64, f64) {
+    let w = 10.0;
+    let mut b = ModelBuilder::new(env_air());
+    let g = b
+        .add_group("rope", CableSection::new(1e5, w / DEFAULT_GRAVITY))
+        .unwrap();
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, 200.0],
+        [100.0, 0.0, 200.0],
+        n,
+        105.0,
+        g,
+        sag0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[n], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let st = StaticSettings {
+        tol,
+        ..Default::default()
+    };
+    let sol = solve_static(&m, &mut NoLoads, &st).unwrap();
+    let ra = sol.outputs.reaction[nodes[0]];
+    let ta = (ra[0] * ra[0] + ra[1] * ra[1] + ra[2] * ra[2]).sqrt();
+    let zmin = nodes
+        .iter()
+        .map(|&i| sol.state.x[i][2])
+        .fold(f64::INFINITY, f64::min);
+    (ta, 200.0 - zmin, sol.report.relative_residual)
+}
+
+#[test]
+fn catenary_oracle_matches_spec_worked_numbers() {
+    let (h, t, sag) = level_catenary(100.0, 105.0, 10.0, 1e5);
+    assert!((h - 838.0068257).abs() < 1e-6);
+    assert!((t - 988.8783747).abs() < 1e-6);
+    assert!((sag - 15.2249674).abs() < 1e-6);
+}
+
+#[test]
+fn elastic_catenary_converges_as_one_over_n_squared() {
+    let (_, t_ex, sag_ex) = level_catenary(100.0, 105.0, 10.0, 1e5);
+    let mut errs = Vec::new();
+    for n in [20, 40, 80, 160] {
+        let (t, sag, rel) = catenary_case(n, 15.0, 1e-9);
+        assert!(rel < 1e-9);
+        errs.push(((t - t_ex) / t_ex, (sag - sag_ex) / sag_ex));
+    }
+    for k in 0..2 {
+        let rt = errs[k].0 / errs[k + 1].0;
+        let rs = errs[k].1 / errs[k + 1].1;
+        assert!(
+            (3.6..4.4).contains(&rt),
+            "tension error ratio {rt} ({errs:?})"
+        );
+        assert!((3.6..4.4).contains(&rs), "sag error ratio {rs} ({errs:?})");
+    }
+    assert!(errs[3].0.abs() < 1e-4 && errs[3].1.abs() < 1e-4, "{errs:?}");
+}
+
+#[test]
+fn catenary_from_a_straight_compressed_start() {
+    // As-built straight chord: every element compressed (slack), no lateral stiffness.
+    let (_, t_ex, sag_ex) = level_catenary(100.0, 105.0, 10.0, 1e5);
+    let (t, sag, _) = catenary_case(40, 0.0, 1e-6);
+    assert!(((t - t_ex) / t_ex).abs() < 2e-3 && ((sag - sag_ex) / sag_ex).abs() < 2e-3);
+}
+
+#[test]
+fn touchdown_on_the_seabed_in_water() {
+    let depth = 50.0;
+    let (d, mu, ea) = (0.1, 80.0, 5e8);
+    let mut env = env_air();
+    env.seabed = Some(Seabed {
+        depth,
+        stiffness: 3e8,
+        damping: 3e5,
+    });
+    let (l, h, l0) = (90.0, 30.0, 110.0);
+    let rho = env.water_density;
+    let w = (mu - rho * std::f64::consts::PI / 4.0 * d * d) * env.gravity;
+    let (hh, vb) = touchdown(l, h, l0, w, ea);
+    let n = 160;
+    let mut b = ModelBuilder::new(env);
+    let g = b
+        .add_group("chain", CableSection::new(ea, mu).with_contact(d))
+        .unwrap();
+    // As-built: laid straight on the bed, then straight up to the fairlead (length L0).
+    let xp = (l0 * l0 - l * l - h * h) / (2.0 * (l0 - l));
+    let pts = [[0.0, 0.0, -depth], [xp, 0.0, -depth], [l, 0.0, -depth + h]];
+    let nodes = add_polyline(&mut b, &pts, n, g);
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[n], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let mut water = WaterLines::new(&m, d, 1.2, [0.0; 3]);
+    let sol = solve_static(&m, &mut water, &StaticSettings::default()).unwrap();
+    assert!(sol.report.iterations < 10_000, "{:?}", sol.report);
+    let r = sol.outputs.reaction[nodes[n]];
+    // Reaction at B = −(cable force on B) = (H, V_B) pulling the fairlead towards the anchor.
+    assert!(((r[0] - hh) / hh).abs() < 2e-4, "H {} vs {hh}", r[0]);
+    assert!(((r[2] - vb) / vb).abs() < 2e-4, "V_B {} vs {vb}", r[2]);
+    // Laid part rests on the bed.
+    let laid = nodes
+        .iter()
+        .filter(|&&i| sol.state.x[i][2] < -depth + 1e-3)
+        .count();
+    let expect = ((l0 - vb / w) / (l0 / n as f64)) as usize;
+    assert!(
+        (laid as i64 - expect as i64).abs() <= 2,
+        "{laid} laid nodes vs {expect}"
+    );
+}
+
+#[test]
+fn newton_converges_quadratically_on_a_smooth_problem() {
+    // Pretensioned horizontal line with a lateral load: smooth, no slack.
+    let mut env = env_air();
+    env.gravity = 0.0;
+    let mut b = ModelBuilder::new(env);
+    let g = b.add_group("line", CableSection::new(1e5, 1.0)).unwrap();
+    let nodes = add_line(&mut b, [0.0; 3], [10.0, 0.0, 0.0], 10, 9.9, g, 0.0);
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[10], Dofs::ALL).unwrap();
+    b.add_point_body(PointBody {
+        node: nodes[4],
+        mass: 0.0,
+        force: [0.0, 300.0, -200.0],
+        seabed_stiffness: 0.0,
+    })
+    .unwrap();
+    let m = b.build().unwrap();
+    let st = StaticSettings {
+        load_steps: 1,
+        stabilisation: 0.0,
+        tol: 1e-12,
+        ..Default::default()
+    };
+    let sol = solve_static(&m, &mut NoLoads, &st).unwrap();
+    let h = &sol.report.last_residual_history;
+    assert!(h.len() >= 4, "{h:?}");
+    let mut checked = 0;
+    for k in 0..h.len() - 1 {
+        if h[k] < 1e-2 * h[0] && h[k + 1] > 1e-13 && h[k] < 1.0 {
+            let order = h[k + 1].ln() / h[k].ln();
+            assert!(order >= 1.8, "order {order} in {h:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 1, "{h:?}");
+}
+
+#[test]
+fn finite_difference_damping_fallback_equals_analytic() {
+    // Statics in a current: drag ∂f/∂x always by finite differences, result independent.
+    let mut b = ModelBuilder::new(env_air());
+    let g = b.add_group("rope", CableSection::new(1e6, 2.0)).unwrap();
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, -1.0],
+        [0.0, 0.0, -21.0],
+        20,
+        20.0,
+        g,
+        0.0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.add_point_body(PointBody {
+        node: nodes[20],
+        mass: 50.0,
+        force: [0.0; 3],
+        seabed_stiffness: 0.0,
+    })
+    .unwrap();
+    let m = b.build().unwrap();
+    let mut w = WaterLines::new(&m, 0.05, 1.2, [0.8, 0.2, 0.0]);
+    let sol = solve_static(&m, &mut w, &StaticSettings::default()).unwrap();
+    // Drag on the rope: tip drifts downstream, top reaction balances total drag + weight.
+    assert!(sol.state.x[nodes[20]][0] > 0.5);
+    let total_x: f64 = sol.outputs.hydro_force.iter().map(|f| f[0]).sum();
+    assert!((sol.outputs.reaction[nodes[0]][0] + total_x).abs() < 1e-6 * total_x.abs().max(1.0));
+}
+
+#[test]
+fn free_floating_model_is_an_error() {
+    let mut b = ModelBuilder::new(env_air());
+    let g = b.add_group("rope", CableSection::new(1e6, 2.0)).unwrap();
+    add_line(&mut b, [0.0; 3], [1.0, 0.0, 0.0], 2, 1.0, g, 0.0);
+    let m = b.build().unwrap();
+    match solve_static(&m, &mut NoLoads, &StaticSettings::default()) {
+        Err(FemError::Unconstrained {
+            first_node: 0,
+            n_nodes: 3,
+        }) => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let mut b = ModelBuilder::new(env_air());
+    let e = b
+        .add_group("bad", CableSection::new(-1.0, 1.0))
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("ea") && e.to_string().contains("-1"),
+        "{e}"
+    );
+    assert!(b.add_group("m", CableSection::new(1.0, 0.0)).is_err());
+    assert!(
+        b.add_group(
+            "rc",
+            CableSection::new(1.0, 1.0).with_compression_ratio(2.0)
+        )
+        .is_err()
+    );
+    let g = b.add_group("ok", CableSection::new(1e6, 1.0)).unwrap();
+    let a = b.add_node([0.0; 3]).unwrap();
+    let c = b.add_node([1.0, 0.0, 0.0]).unwrap();
+    let e = b
+        .add_cable(a, c, g, UnstretchedLength::Given(0.0))
+        .unwrap_err();
+    assert!(e.to_string().contains("unstretched_length"), "{e}");
+    assert!(
+        b.add_cable(a, c, g, UnstretchedLength::Given(-2.0))
+            .is_err()
+    );
+    assert!(b.add_cable(a, 7, g, UnstretchedLength::Given(1.0)).is_err());
+    assert!(b.add_cable(a, a, g, UnstretchedLength::Given(1.0)).is_err());
+    assert!(b.add_node([f64::NAN, 0.0, 0.0]).is_err());
+    assert!(
+        b.add_point_body(PointBody {
+            node: a,
+            mass: -1.0,
+            force: [0.0; 3],
+            seabed_stiffness: 0.0
+        })
+        .is_err()
+    );
+    assert!(
+        b.prescribe(
+            a,
+            Motion::Ramp {
+                target: [1.0, 0.0, 0.0],
+                duration: 0.0
+            }
+        )
+        .is_err()
+    );
+    let mut env = env_air();
+    env.seabed = Some(Seabed::new(-5.0));
+    let mut b2 = ModelBuilder::new(env);
+    let g2 = b2.add_group("ok", CableSection::new(1e6, 1.0)).unwrap();
+    add_line(&mut b2, [0.0; 3], [1.0, 0.0, 0.0], 1, 1.0, g2, 0.0);
+    assert!(b2.build().is_err());
+    // Unattached node.
+    let mut b3 = ModelBuilder::new(env_air());
+    b3.add_node([0.0; 3]).unwrap();
+    assert!(b3.build().is_err());
+}
