@@ -493,7 +493,7 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
                 format!(
                     "malformed MSH 4.1{}: {}",
                     if at_end {
-                        " (file ends early: truncated?)"
+                        " (near the end of the file: truncated?)"
                     } else {
                         ""
                     },
