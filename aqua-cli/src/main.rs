@@ -13,6 +13,8 @@ struct Cli {
 }
 
 #[derive(Subcommand, Debug)]
+// Parsed once per process: the size of the flag structs does not matter.
+#[allow(clippy::large_enum_variant)]
 enum Command {
     /// Preview a sea state: summary, CSV time series of elevation and kinematics.
     Waves(commands::waves::Args),

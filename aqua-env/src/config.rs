@@ -302,6 +302,26 @@ fn default_spacing() -> Spacing {
     Spacing::RandomInBin
 }
 
+impl Default for SpectrumSpec {
+    /// JONSWAP with automatic γ and the spec's defaults; hs and tp still have to be given.
+    fn default() -> Self {
+        Self {
+            shape: SpectrumShape::Jonswap,
+            hs: None,
+            tp: None,
+            gamma: None,
+            mean_direction: 0.0,
+            spreading_s: None,
+            components: default_components(),
+            spacing: default_spacing(),
+            seed: default_seed(),
+            energy_cutoff: default_cutoff(),
+            normalise: false,
+            table: None,
+        }
+    }
+}
+
 /// Options that come from the rest of the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BuildOptions {

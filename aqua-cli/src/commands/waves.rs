@@ -11,7 +11,7 @@ use aqua_env::config::{
     CurrentKind, DepthValue, GammaValue, SpectrumShape, SpectrumSpec, WaveKind,
 };
 use aqua_env::record::{significant_height, welch};
-use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Spacing, Stretching, Waves};
+use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Stretching, Waves};
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
@@ -187,20 +187,7 @@ fn apply_flags(mut spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
                     .into(),
             ));
         }
-        let sp = w.spectrum.get_or_insert_with(|| SpectrumSpec {
-            shape: SpectrumShape::Jonswap,
-            hs: None,
-            tp: None,
-            gamma: None,
-            mean_direction: 0.0,
-            spreading_s: None,
-            components: 200,
-            spacing: Spacing::RandomInBin,
-            seed: 1,
-            energy_cutoff: 1e-3,
-            normalise: false,
-            table: None,
-        });
+        let sp = w.spectrum.get_or_insert_with(SpectrumSpec::default);
         if let Some(v) = a.hs {
             sp.hs = Some(v);
         }
