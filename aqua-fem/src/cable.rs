@@ -163,6 +163,7 @@ mod tests {
             [0.0; 3],
             false,
             0.0,
+            false,
         );
         assert_eq!(ev.switch, 1e-2);
         assert!(ev.tension < 0.0);
@@ -174,6 +175,7 @@ mod tests {
             [0.0; 3],
             false,
             0.0,
+            false,
         );
         assert!((ev.tension - 2e4 * 0.1).abs() < 1e-9);
         assert!((strain_energy(&e, 0.1) - 0.5 * 2e4 * 0.01 * 1.3).abs() < 1e-9);

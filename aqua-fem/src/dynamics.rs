@@ -571,20 +571,6 @@ impl<'m> DynamicSolver<'m> {
             {
                 return Err(fail(e.to_string(), &hist));
             }
-            if let Some(c) = self
-                .sys
-                .cable
-                .iter()
-                .find(|c| c.strain.abs() > self.st.max_strain)
-            {
-                return Err(fail(
-                    format!(
-                        "strain {:.3e} beyond max_strain {}",
-                        c.strain, self.st.max_strain
-                    ),
-                    &hist,
-                ));
-            }
             let mut rn = 0.0;
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
                 let (i, k) = (gd / 3, gd % 3);
@@ -606,7 +592,20 @@ impl<'m> DynamicSolver<'m> {
                 return Err(fail("residual grew by more than 1e4".into(), &hist));
             }
             let tol = self.st.tol * f_ref;
+            let max_strain = self.st.max_strain;
+            let strain_check = |sys: &System, hist: &Vec<f64>| match sys
+                .cable
+                .iter()
+                .find(|c| c.strain.abs() > max_strain)
+            {
+                Some(c) => Err(Attempt {
+                    reason: format!("strain {:.3e} beyond max_strain {max_strain}", c.strain),
+                    history: hist.clone(),
+                }),
+                None => Ok(()),
+            };
             if it > 0 && rn <= tol && dx_prev <= xtol {
+                strain_check(&self.sys, &hist)?;
                 return Ok((it, hist));
             }
             if let Err(e) = self.sys.factorize() {
@@ -620,6 +619,7 @@ impl<'m> DynamicSolver<'m> {
             }
             let dinf = self.dx.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             if rn <= tol && dinf <= xtol {
+                strain_check(&self.sys, &hist)?;
                 return Ok((it + 1, hist));
             }
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
@@ -683,7 +683,7 @@ impl<'m> DynamicSolver<'m> {
                 mins = (i, c.strain);
             }
         }
-        FemError::StepFailed {
+        FemError::StepFailed(Box::new(crate::error::StepFailure {
             t: self.state.t,
             dt: h,
             dt_min,
@@ -696,6 +696,6 @@ impl<'m> DynamicSolver<'m> {
             min_strain_element: mins.0,
             min_strain: mins.1,
             history: fail.history,
-        }
+        }))
     }
 }

@@ -53,67 +53,11 @@ pub enum FemError {
         message: String,
     },
     /// The static solver failed.
-    #[error(
-        "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
-         {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
-         residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {history:?}. \
-         Hints: check supports and slack parts, raise `stabilisation`, or use more `load_steps`"
-    )]
-    StaticFailed {
-        /// Load factor that could not be reached.
-        load_factor: f64,
-        /// Last attempted increment.
-        increment: f64,
-        /// Minimum allowed increment.
-        min_increment: f64,
-        /// Why the last attempt failed.
-        reason: String,
-        /// Node with the largest residual.
-        worst_node: usize,
-        /// Its position [m].
-        worst_position: [f64; 3],
-        /// Its residual norm [N].
-        worst_residual: f64,
-        /// Reference force [N].
-        f_ref: f64,
-        /// ‖r‖/F_ref per iteration of the last attempt.
-        history: Vec<f64>,
-    },
+    #[error(transparent)]
+    StaticFailed(Box<StaticFailure>),
     /// A dynamic step failed down to the minimum step.
-    #[error(
-        "dynamic step failed at t = {t:.6} s with dt = {dt:.3e} s < dt_min = {dt_min:.3e} s: \
-         {reason}; worst node {worst_node} at {worst_position:?} with residual \
-         {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
-         {max_strain:.4e}), most compressed element {min_strain_element} (strain \
-         {min_strain:.4e}); residual history {history:?}. Hints: smaller dt, larger alpha, \
-         check supports and slack parts"
-    )]
-    StepFailed {
-        /// Time of the last converged state [s].
-        t: f64,
-        /// Step that failed [s].
-        dt: f64,
-        /// Minimum step [s].
-        dt_min: f64,
-        /// Why the last attempt failed.
-        reason: String,
-        /// Node with the largest residual.
-        worst_node: usize,
-        /// Its position [m].
-        worst_position: [f64; 3],
-        /// Its residual norm [N].
-        worst_residual: f64,
-        /// Element with the largest strain.
-        max_strain_element: usize,
-        /// Its strain.
-        max_strain: f64,
-        /// Element with the smallest strain.
-        min_strain_element: usize,
-        /// Its strain.
-        min_strain: f64,
-        /// ‖r‖/F_ref per iteration of the last attempt.
-        history: Vec<f64>,
-    },
+    #[error(transparent)]
+    StepFailed(Box<StepFailure>),
     /// The sparse factorisation failed or the system is singular.
     #[error("linear solve failed: {0}")]
     Linear(String),
@@ -136,4 +80,70 @@ pub(crate) fn invalid(what: impl Into<String>, value: f64, valid: impl Into<Stri
         value,
         valid: valid.into(),
     }
+}
+
+/// Details of a static solver failure.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error(
+    "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
+         {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
+         residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {history:?}. \
+         Hints: check supports and slack parts, raise `stabilisation`, or use more `load_steps`"
+)]
+pub struct StaticFailure {
+    /// Load factor that could not be reached.
+    pub load_factor: f64,
+    /// Last attempted increment.
+    pub increment: f64,
+    /// Minimum allowed increment.
+    pub min_increment: f64,
+    /// Why the last attempt failed.
+    pub reason: String,
+    /// Node with the largest residual.
+    pub worst_node: usize,
+    /// Its position [m].
+    pub worst_position: [f64; 3],
+    /// Its residual norm [N].
+    pub worst_residual: f64,
+    /// Reference force [N].
+    pub f_ref: f64,
+    /// ‖r‖/F_ref per iteration of the last attempt.
+    pub history: Vec<f64>,
+}
+
+/// Details of a dynamic step failure.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error(
+    "dynamic step failed at t = {t:.6} s with dt = {dt:.3e} s < dt_min = {dt_min:.3e} s: \
+         {reason}; worst node {worst_node} at {worst_position:?} with residual \
+         {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
+         {max_strain:.4e}), most compressed element {min_strain_element} (strain \
+         {min_strain:.4e}); residual history {history:?}. Hints: smaller dt, larger alpha, \
+         check supports and slack parts"
+)]
+pub struct StepFailure {
+    /// Time of the last converged state [s].
+    pub t: f64,
+    /// Step that failed [s].
+    pub dt: f64,
+    /// Minimum step [s].
+    pub dt_min: f64,
+    /// Why the last attempt failed.
+    pub reason: String,
+    /// Node with the largest residual.
+    pub worst_node: usize,
+    /// Its position [m].
+    pub worst_position: [f64; 3],
+    /// Its residual norm [N].
+    pub worst_residual: f64,
+    /// Element with the largest strain.
+    pub max_strain_element: usize,
+    /// Its strain.
+    pub max_strain: f64,
+    /// Element with the smallest strain.
+    pub min_strain_element: usize,
+    /// Its strain.
+    pub min_strain: f64,
+    /// ‖r‖/F_ref per iteration of the last attempt.
+    pub history: Vec<f64>,
 }

@@ -232,7 +232,8 @@ impl<'m> ExplicitSolver<'m> {
         let n = model.n_nodes();
         let mut k_sum = vec![0.0; n];
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
-            let k = c.switch * e.ea / e.l0 + c.tension.abs() / c.length;
+            // Full EA/L0 even when slack: the element may tighten before the next estimate.
+            let k = e.ea / e.l0 + c.tension.abs() / c.length;
             k_sum[e.a] += k;
             k_sum[e.b] += k;
         }

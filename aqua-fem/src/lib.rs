@@ -77,7 +77,7 @@ pub mod statics;
 mod system;
 
 pub use dynamics::{DynamicSettings, DynamicSolver, Energies, MassMatrix, StepReport};
-pub use error::{FemError, LoadError, Result};
+pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
 pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};
 pub use model::{

@@ -236,12 +236,6 @@ pub fn solve_static<P: LoadProvider + ?Sized>(
         ctx.x_ref.copy_from_slice(&x_acc);
         ctx.update_stabilisation(eps);
         let res = ctx.newton(s);
-        if std::env::var("AQUA_FEM_DEBUG").is_ok() {
-            match &res {
-                Ok((it, h)) => eprintln!("s={s:.5} eps={eps:.1e} ok it={it} {h:?}"),
-                Err(f) => eprintln!("s={s:.5} eps={eps:.1e} FAIL {} {:?}", f.reason, f.history),
-            }
-        }
         match res {
             Ok((iters, hist)) => {
                 report.last_residual_history = hist;
@@ -550,7 +544,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
                 worst = (i, r.sqrt());
             }
         }
-        FemError::StaticFailed {
+        FemError::StaticFailed(Box::new(crate::error::StaticFailure {
             load_factor: s,
             increment: ds,
             min_increment: self.st.min_load_step,
@@ -560,6 +554,6 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, P> {
             worst_residual: worst.1,
             f_ref: self.f_ref,
             history: f.history,
-        }
+        }))
     }
 }

@@ -11,8 +11,10 @@ fn env_air() -> Environment {
 #[test]
 fn axial_bar_end_load_exact_for_any_mesh() {
     for n in [1, 3, 7] {
-        let mut env = env_air();
-        env.gravity = 0.0;
+        let env = Environment {
+            gravity: 0.0,
+            ..Default::default()
+        };
         let mut b = ModelBuilder::new(env);
         let g = b.add_group("bar", CableSection::new(1e6, 1.0)).unwrap();
         let nodes = add_line(&mut b, [0.0, 0.0, 10.0], [0.0, 0.0, 0.0], n, 10.0, g, 0.0);
@@ -143,12 +145,14 @@ fn catenary_from_a_straight_compressed_start() {
 fn touchdown_on_the_seabed_in_water() {
     let depth = 50.0;
     let (d, mu, ea) = (0.1, 80.0, 5e8);
-    let mut env = env_air();
-    env.seabed = Some(Seabed {
-        depth,
-        stiffness: 3e8,
-        damping: 3e5,
-    });
+    let env = Environment {
+        seabed: Some(Seabed {
+            depth,
+            stiffness: 3e8,
+            damping: 3e5,
+        }),
+        ..Default::default()
+    };
     let (l, h, l0) = (90.0, 30.0, 110.0);
     let rho = env.water_density;
     let w = (mu - rho * std::f64::consts::PI / 4.0 * d * d) * env.gravity;
@@ -187,8 +191,10 @@ fn touchdown_on_the_seabed_in_water() {
 #[test]
 fn newton_converges_quadratically_on_a_smooth_problem() {
     // Pretensioned horizontal line with a lateral load: smooth, no slack.
-    let mut env = env_air();
-    env.gravity = 0.0;
+    let env = Environment {
+        gravity: 0.0,
+        ..Default::default()
+    };
     let mut b = ModelBuilder::new(env);
     let g = b.add_group("line", CableSection::new(1e5, 1.0)).unwrap();
     let nodes = add_line(&mut b, [0.0; 3], [10.0, 0.0, 0.0], 10, 9.9, g, 0.0);
@@ -319,8 +325,10 @@ fn bad_input_is_a_clear_error() {
         )
         .is_err()
     );
-    let mut env = env_air();
-    env.seabed = Some(Seabed::new(-5.0));
+    let env = Environment {
+        seabed: Some(Seabed::new(-5.0)),
+        ..Default::default()
+    };
     let mut b2 = ModelBuilder::new(env);
     let g2 = b2.add_group("ok", CableSection::new(1e6, 1.0)).unwrap();
     add_line(&mut b2, [0.0; 3], [1.0, 0.0, 0.0], 1, 1.0, g2, 0.0);

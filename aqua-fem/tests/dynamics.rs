@@ -1,0 +1,443 @@
+//! Dynamic oracles (fem.md §16): HHT-α spectral properties, energy conservation, taut-string
+//! frequency, explicit vs implicit, slack round trip, failure handling.
+
+mod common;
+use aqua_fem::*;
+use common::*;
+use std::f64::consts::PI;
+
+/// Point mass between two vertical pre-stretched one-element cables (fixed outer ends):
+/// axial motion is exactly linear with k = 2EA/L0. Returns (model, mass node, k/m).
+fn sdof(gravity: f64, omega2: f64) -> (Model, usize) {
+    let env = Environment {
+        gravity,
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let (ea, l, t0, mu) = (1e5, 10.0, 1e4, 0.1);
+    let l0 = l / (1.0 + t0 / ea);
+    let g = b.add_group("spring", CableSection::new(ea, mu)).unwrap();
+    let top = b.add_node([0.0, 0.0, l]).unwrap();
+    let mid = b.add_node([0.0, 0.0, 0.0]).unwrap();
+    let bot = b.add_node([0.0, 0.0, -l]).unwrap();
+    b.add_cable(top, mid, g, UnstretchedLength::Given(l0))
+        .unwrap();
+    b.add_cable(mid, bot, g, UnstretchedLength::Given(l0))
+        .unwrap();
+    let k = 2.0 * ea / l0;
+    let m_total = k / omega2;
+    b.add_point_body(PointBody {
+        node: mid,
+        mass: m_total - mu * l0,
+        force: [0.0; 3],
+        seabed_stiffness: 0.0,
+    })
+    .unwrap();
+    b.fix(top, Dofs::ALL).unwrap();
+    b.fix(bot, Dofs::ALL).unwrap();
+    (b.build().unwrap(), mid)
+}
+
+/// Runs the SDOF from equilibrium + offset and fits d_{n+1} = p·d_n + q·d_{n−1}.
+fn hht_fit(alpha: f64, dt_over_t: f64, steps: usize) -> (f64, f64, f64) {
+    let (m, mid) = sdof(9.81, 4.0 * PI * PI);
+    let st = solve_static(
+        &m,
+        &mut NoLoads,
+        &StaticSettings {
+            tol: 1e-12,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let z_eq = st.state.x[mid][2];
+    let mut init = st.state.clone();
+    init.x[mid][2] += 1e-3;
+    let mut s = DynamicSettings::new(dt_over_t, steps as f64 * dt_over_t);
+    s.alpha = alpha;
+    s.tol = 1e-12;
+    let mut solver = DynamicSolver::new(&m, s, Some(&init), &mut NoLoads).unwrap();
+    let mut d = vec![1e-3];
+    while !solver.is_finished() {
+        let r = solver.step(&mut NoLoads).unwrap();
+        assert_eq!(r.retries, 0);
+        d.push(solver.state().x[mid][2] - z_eq);
+    }
+    let (p, q) = fit(&d);
+    let rho = (-q).sqrt();
+    let omega_bar = (p / (2.0 * rho)).acos();
+    let xi = -rho.ln() / omega_bar;
+    let omega = 2.0 * PI * dt_over_t;
+    (rho, xi, omega / omega_bar)
+}
+
+/// Least-squares fit of d_{n+1} = p·d_n + q·d_{n−1} on rows n ≥ 20.
+fn fit(d: &[f64]) -> (f64, f64) {
+    let (mut a11, mut a12, mut a22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for n in 21..d.len() - 1 {
+        let (x1, x2, y) = (d[n], d[n - 1], d[n + 1]);
+        a11 += x1 * x1;
+        a12 += x1 * x2;
+        a22 += x2 * x2;
+        b1 += x1 * y;
+        b2 += x2 * y;
+    }
+    let det = a11 * a22 - a12 * a12;
+    let p = (b1 * a22 - b2 * a12) / det;
+    let q = (a11 * b2 - a12 * b1) / det;
+    (p, q)
+}
+
+#[test]
+fn hht_damping_and_period_error_match_spec() {
+    let (rho, xi, period_ratio) = hht_fit(0.1, 0.1, 600);
+    assert!((xi - 0.002106128972).abs() < 1e-6, "xi {xi}");
+    assert!((rho - 0.998727782).abs() < 1e-6, "rho {rho}");
+    assert!(
+        (period_ratio - 1.0 - 0.03950575512).abs() < 1e-6,
+        "T ratio {period_ratio}"
+    );
+}
+
+#[test]
+fn hht_alpha_zero_has_no_damping_and_omega2_over_12_period_error() {
+    let (rho, xi, period_ratio) = hht_fit(0.0, 0.01, 2000);
+    assert!(
+        xi.abs() < 1e-7 && (rho - 1.0).abs() < 1e-7,
+        "xi {xi} rho {rho}"
+    );
+    let om = 2.0 * PI * 0.01;
+    // Exact trapezoidal period: Ω̄ = 2·atan(Ω/2).
+    let exact = om / (2.0 * (om / 2.0).atan());
+    assert!(
+        (period_ratio - exact).abs() < 1e-8,
+        "{period_ratio} vs {exact}"
+    );
+    assert!((period_ratio - 1.0 - om * om / 12.0).abs() < 1e-5);
+}
+
+#[test]
+fn hht_spectral_radius_at_large_steps() {
+    // (For α > 0.25 the third, spurious root is no longer negligible and a two-term fit
+    // cannot isolate ρ∞; α ≤ 0.25 is checked.)
+    for (alpha, rho_inf) in [(0.1, 0.8181818181818181), (0.2, 2.0 / 3.0), (0.25, 0.6)] {
+        let (m, mid) = sdof(0.0, 4.0 * PI * PI);
+        let mut init = State::as_built(&m, 0.0);
+        init.x[mid][2] += 1e-3;
+        let mut s = DynamicSettings::new(1000.0, 40_000.0);
+        s.alpha = alpha;
+        s.tol = 1e-12;
+        let mut solver = DynamicSolver::new(&m, s, Some(&init), &mut NoLoads).unwrap();
+        let mut d = vec![1e-3];
+        while !solver.is_finished() {
+            solver.step(&mut NoLoads).unwrap();
+            d.push(solver.state().x[mid][2]);
+        }
+        // Double real root at Ω → ∞: d_n = (A + Bn)·λⁿ; the fit gives ρ = √(−q).
+        let (_, q) = fit(&d);
+        let ratio = (-q).sqrt();
+        assert!(
+            (ratio - rho_inf).abs() < 1e-3,
+            "alpha {alpha}: {ratio} vs {rho_inf}"
+        );
+    }
+}
+
+#[test]
+fn alpha_conventions_and_validation() {
+    assert!((DynamicSettings::alpha_from_rho_inf(0.5).unwrap() - 1.0 / 3.0).abs() < 1e-15);
+    assert!((DynamicSettings::alpha_from_negative(-0.1).unwrap() - 0.1).abs() < 1e-15);
+    let e = DynamicSettings::alpha_from_negative(-10.3).unwrap_err();
+    assert!(
+        e.to_string().contains("-10.3") && e.to_string().contains("rho_inf"),
+        "{e}"
+    );
+    assert!(DynamicSettings::alpha_from_rho_inf(0.3).is_err());
+    let (m, _) = sdof(9.81, 40.0);
+    let mut s = DynamicSettings::new(0.1, 1.0);
+    s.alpha = 0.5;
+    assert!(DynamicSolver::new(&m, s, None, &mut NoLoads).is_err());
+}
+
+#[test]
+fn alpha_zero_conserves_energy_over_ten_thousand_steps() {
+    let (m, mid) = sdof(9.81, 4.0 * PI * PI);
+    let mut init = State::as_built(&m, 0.0);
+    init.x[mid][2] += 2e-3;
+    let mut s = DynamicSettings::new(0.01, 100.0);
+    s.alpha = 0.0;
+    s.tol = 1e-12;
+    let mut solver = DynamicSolver::new(&m, s, Some(&init), &mut NoLoads).unwrap();
+    let e0 = solver.energies();
+    let scale = e0.kinetic + e0.strain;
+    let mut steps = 0;
+    let mut worst: f64 = 0.0;
+    while !solver.is_finished() {
+        let r = solver.step(&mut NoLoads).unwrap();
+        worst = worst.max(r.energies.numerical_dissipation.abs());
+        steps += 1;
+    }
+    assert!(steps >= 10_000);
+    assert!(worst < 1e-9 * scale, "energy drift {worst} of {scale}");
+}
+
+#[test]
+fn taut_string_first_frequency() {
+    let (l, t, mu, ea, n) = (10.0, 1000.0, 0.5, 1e8, 20usize);
+    let env = Environment {
+        gravity: 0.0,
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let g = b.add_group("string", CableSection::new(ea, mu)).unwrap();
+    let mut nodes = Vec::new();
+    for i in 0..=n {
+        nodes.push(b.add_node([l * i as f64 / n as f64, 0.0, 0.0]).unwrap());
+    }
+    for i in 0..n {
+        b.add_cable(
+            nodes[i],
+            nodes[i + 1],
+            g,
+            UnstretchedLength::AsBuilt { initial_tension: t },
+        )
+        .unwrap();
+    }
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[n], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let f1 = 2.236067977;
+    assert!((1.0 / (2.0 * l) * (t / mu).sqrt() - f1).abs() < 1e-9);
+    // Mode shape offset 1e-4·L.
+    let mut init = State::as_built(&m, 0.0);
+    for i in 0..=n {
+        // 1e-5·L rather than the spec's 1e-4·L: with EA = 1e8 the second-order stretch at 1e-4·L
+        // raises the tension by ~0.25 % and the frequency by ~0.1 %.
+        init.x[nodes[i]][1] = 1e-5 * l * (PI * i as f64 / n as f64).sin();
+    }
+    let dt = 1.0 / (200.0 * f1);
+    let mut s = DynamicSettings::new(dt, 3.2 / f1);
+    s.alpha = 0.0;
+    s.tol = 1e-8;
+    let mut solver = DynamicSolver::new(&m, s, Some(&init), &mut NoLoads).unwrap();
+    let mid = nodes[n / 2];
+    let mut prev = (0.0, init.x[mid][1]);
+    let mut crossings = Vec::new();
+    while !solver.is_finished() {
+        solver.step(&mut NoLoads).unwrap();
+        let cur = (solver.time(), solver.state().x[mid][1]);
+        if prev.1 > 0.0 && cur.1 <= 0.0 || prev.1 < 0.0 && cur.1 >= 0.0 {
+            crossings.push(prev.0 + (cur.0 - prev.0) * prev.1 / (prev.1 - cur.1));
+        }
+        prev = cur;
+    }
+    assert!(crossings.len() >= 5);
+    let period =
+        (crossings[crossings.len() - 1] - crossings[0]) / ((crossings.len() - 1) as f64 / 2.0);
+    let f = 1.0 / period;
+    // Discrete (lumped) string: f = (N/(πL))·√(T/μ)·sin(π/2N); trapezoid period error Ω²/12.
+    let f_discrete = n as f64 / (PI * l) * (t / mu).sqrt() * (PI / (2.0 * n as f64)).sin();
+    let om = 2.0 * PI * f_discrete * dt;
+    let f_expected = f_discrete / (1.0 + om * om / 12.0);
+    assert!(
+        ((f - f_expected) / f_expected).abs() < 2e-4,
+        "f {f} vs {f_expected}"
+    );
+    assert!(((f - f1) / f1).abs() < 2e-3, "f {f} vs continuum {f1}");
+}
+
+fn swinging_chain() -> (Model, usize) {
+    let mut b = ModelBuilder::new(Environment::default());
+    let g = b.add_group("chain", CableSection::new(2e5, 1.0)).unwrap();
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, 10.0],
+        [10.0, 0.0, 10.0],
+        10,
+        10.0,
+        g,
+        0.0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    (b.build().unwrap(), nodes[10])
+}
+
+#[test]
+fn explicit_and_implicit_agree_on_a_swinging_chain() {
+    let (m, tip) = swinging_chain();
+    let t_end = 1.5;
+    let mut s = DynamicSettings::new(1e-3, t_end);
+    s.alpha = 0.05;
+    let mut implicit = DynamicSolver::new(&m, s, None, &mut NoLoads).unwrap();
+    implicit.run(&mut NoLoads, |_, _| true).unwrap();
+    for scheme in [ExplicitScheme::SemiImplicitEuler, ExplicitScheme::Rk4] {
+        let mut es = ExplicitSettings::new(t_end);
+        es.scheme = scheme;
+        let mut explicit = ExplicitSolver::new(&m, es, None, &mut NoLoads).unwrap();
+        while !explicit.is_finished() {
+            explicit.step(&mut NoLoads).unwrap();
+        }
+        let (a, b) = (implicit.state().x[tip], explicit.state().x[tip]);
+        let d = ((a[0] - b[0]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+        // Tolerance: 1 % of the chain length on the tip position after 1.5 s of swing.
+        assert!(d < 0.1, "{scheme:?}: tip {a:?} vs {b:?}");
+        assert!(explicit.state().x[tip][2] < 5.0, "the chain has swung down");
+    }
+}
+
+#[test]
+fn explicit_step_estimate_and_user_dt() {
+    let (m, _) = swinging_chain();
+    let mut es = ExplicitSettings::new(0.01);
+    es.dt = Some(1.0);
+    let solver = ExplicitSolver::new(&m, es.clone(), None, &mut NoLoads).unwrap();
+    // Gershgorin bound for this chain: 2/ω = 2/√(4·EA/(L0·m)) with m = μL0 (interior node).
+    let est = 0.5 * 2.0 / (4.0 * 2e5 / 1.0 / 1.0f64).sqrt();
+    assert!(
+        solver.dt() <= est * 1.0001 && solver.dt() > 0.5 * est,
+        "{} vs {est}",
+        solver.dt()
+    );
+    assert_eq!(solver.warnings().len(), 1);
+    es.dt_fixed = true;
+    assert!(ExplicitSolver::new(&m, es, None, &mut NoLoads).is_err());
+}
+
+#[test]
+fn line_pulled_through_slack_and_back_does_not_blow_up() {
+    // Taut line, fairlead moved 20 % towards the anchor (slack, compressed) and back.
+    let env = Environment {
+        seabed: Some(Seabed::new(30.0)),
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let sec = CableSection::new(1e7, 20.0)
+        .with_contact(0.05)
+        .with_axial_damping(AxialDamping::Ratio(0.05));
+    let g = b.add_group("line", sec).unwrap();
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, -30.0],
+        [40.0, 0.0, -5.0],
+        40,
+        47.0,
+        g,
+        0.0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    let rows = [
+        [0.0, 0.0, 0.0, 0.0],
+        [5.0, -10.0, 0.0, -5.0],
+        [10.0, 3.0, 0.0, 1.0],
+        [15.0, 0.0, 0.0, 0.0],
+        [30.0, 0.0, 0.0, 0.0],
+    ];
+    b.prescribe(nodes[40], Motion::table(&rows).unwrap())
+        .unwrap();
+    let m = b.build().unwrap();
+    let st = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    let t_static = st.outputs.tension[39];
+    let mut s = DynamicSettings::new(0.02, 40.0);
+    // Mass-proportional damping settles the swing in air after the excursion.
+    s.rayleigh = [0.5, 0.0];
+    let mut solver = DynamicSolver::new(&m, s, Some(&st.state), &mut NoLoads).unwrap();
+    let mut min_t = f64::INFINITY;
+    let mut max_t: f64 = 0.0;
+    let mut saw_slack = false;
+    while !solver.is_finished() {
+        solver.step(&mut NoLoads).unwrap();
+        let o = solver.outputs();
+        assert!(o.tension.iter().all(|t| t.is_finite()));
+        saw_slack |= o.n_slack() > 10;
+        min_t = min_t.min(o.tension.iter().cloned().fold(f64::INFINITY, f64::min));
+        max_t = max_t.max(o.tension.iter().cloned().fold(0.0, f64::max));
+    }
+    assert!(saw_slack, "the line went slack");
+    // Slack elements push at most r_c·EA·|ε|; axial damping may add a small negative part.
+    assert!(min_t > -0.01 * max_t, "min tension {min_t} vs max {max_t}");
+    let t_end = solver.outputs().tension[39];
+    assert!(
+        ((t_end - t_static) / t_static).abs() < 0.05,
+        "{t_end} vs {t_static}"
+    );
+    assert!(max_t.is_finite());
+}
+
+#[test]
+fn a_step_that_cannot_converge_is_a_clear_error() {
+    let (m, _) = swinging_chain();
+    let mut s = DynamicSettings::new(0.5, 2.0);
+    s.max_iter = 1;
+    s.dt_min = Some(0.1);
+    let mut solver = DynamicSolver::new(&m, s, None, &mut NoLoads).unwrap();
+    let t0 = solver.time();
+    match solver.step(&mut NoLoads) {
+        Err(FemError::StepFailed(f)) => {
+            assert_eq!(f.t, t0);
+            assert!(f.dt < 0.2 && !f.history.is_empty());
+            assert!(f.to_string().contains("worst node"));
+        }
+        other => panic!("{other:?}"),
+    }
+    // Last converged state untouched and finite.
+    assert!(solver.state().x.iter().flatten().all(|v| v.is_finite()));
+}
+
+#[test]
+fn consistent_mass_and_water_loads_run() {
+    let env = Environment {
+        seabed: Some(Seabed::new(20.0)),
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let g = b
+        .add_group("rope", CableSection::new(1e6, 3.0).with_contact(0.04))
+        .unwrap();
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, -20.0],
+        [25.0, 0.0, -2.0],
+        30,
+        33.0,
+        g,
+        3.0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.prescribe(
+        nodes[30],
+        Motion::harmonic([1.0, 0.0, 0.0], [0.0; 3], 4.0, 0.0, 4.0).unwrap(),
+    )
+    .unwrap();
+    let m = b.build().unwrap();
+    let mut w = WaterLines::new(&m, 0.04, 1.2, [0.3, 0.0, 0.0]);
+    let st = solve_static(&m, &mut w, &StaticSettings::default()).unwrap();
+    let mut w_fd = w.clone();
+    w_fd.analytic = false;
+    let mut ends = Vec::new();
+    let mut w_c = w.clone();
+    for (mass, prov) in [
+        (MassMatrix::Lumped, &mut w),
+        (MassMatrix::Consistent, &mut w_c),
+        (MassMatrix::Lumped, &mut w_fd),
+    ] {
+        let mut s = DynamicSettings::new(0.05, 6.0);
+        s.mass_matrix = mass;
+        let mut solver = DynamicSolver::new(&m, s, Some(&st.state), prov).unwrap();
+        let mut iters = 0;
+        while !solver.is_finished() {
+            iters += solver.step(prov).unwrap().iterations;
+        }
+        assert!(iters < 10 * solver.n_steps(), "{iters} iterations");
+        ends.push(solver.state().x[nodes[15]]);
+    }
+    // Finite-difference damping Jacobian gives the same trajectory (only the tangent differs).
+    let d = (0..3)
+        .map(|k| (ends[0][k] - ends[2][k]).abs())
+        .fold(0.0, f64::max);
+    assert!(d < 1e-4, "{:?} vs {:?}", ends[0], ends[2]);
+    // Lumped and consistent mass agree at this slow excitation.
+    let d = (0..3)
+        .map(|k| (ends[0][k] - ends[1][k]).abs())
+        .fold(0.0, f64::max);
+    assert!(d < 0.05, "{:?} vs {:?}", ends[0], ends[1]);
+}
