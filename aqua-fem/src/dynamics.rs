@@ -351,6 +351,19 @@ impl<'m> DynamicSolver<'m> {
     pub fn energies(&self) -> Energies {
         self.energies
     }
+    /// Diagnostics for benchmarks: numeric LU of the last assembled Jacobian plus one solve,
+    /// without assembly (the bare linear-algebra cost of one Newton iteration).
+    pub fn factorize_and_solve_last(&mut self) -> Result<()> {
+        self.sys.factorize()?;
+        self.dx.copy_from_slice(&self.r);
+        self.sys.solve(&mut self.dx)
+    }
+
+    /// Number of free DOFs (unknowns).
+    pub fn n_free_dofs(&self) -> usize {
+        self.sys.n_free()
+    }
+
     /// Settings.
     pub fn settings(&self) -> &DynamicSettings {
         &self.st

@@ -95,6 +95,7 @@ pub(crate) struct System {
     pub diag_pos: Vec<usize>,
     solver: Option<LinearSolver>,
     pub n_factorisations: usize,
+    load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
 }
 
 fn pos_in(col_ptr: &[usize], row_idx: &[usize], row: usize, col: usize) -> usize {
@@ -269,6 +270,7 @@ impl System {
             diag_pos,
             solver: None,
             n_factorisations: 0,
+            load_scratch: Default::default(),
         })
     }
 
@@ -351,7 +353,9 @@ impl System {
             let t = o.t;
             let (load_nodes, load_nn) = (&self.load_nodes, &self.load_nn);
             let prov: &P = provider;
-            let kernel = |(e, chunk): (usize, &mut [f64])| -> Result<()> {
+            let kernel = |bufs: &mut (Box<ElementLoad>, Box<ElementLoad>),
+                          (e, chunk): (usize, &mut [f64])|
+             -> Result<()> {
                 let nn = load_nn[e];
                 let mut xl = [[0.0; 3]; MAX_LOAD_NODES];
                 let mut vl = [[0.0; 3]; MAX_LOAD_NODES];
@@ -359,18 +363,28 @@ impl System {
                     xl[j] = x[load_nodes[e][j]];
                     vl[j] = v[load_nodes[e][j]];
                 }
-                load_element(prov, e, nn, t, &xl, &vl, want, coef, scale, fd_dfdx, chunk)
+                let (out, tmp) = bufs;
+                load_element(
+                    prov, e, nn, t, &xl, &vl, want, coef, scale, fd_dfdx, chunk, out, tmp,
+                )
             };
             let res: Result<()> = if nl >= PAR_THRESHOLD {
                 self.load_buf
                     .par_chunks_mut(stride)
                     .enumerate()
-                    .try_for_each(kernel)
+                    .try_for_each_init(
+                        || (Box::<ElementLoad>::default(), Box::<ElementLoad>::default()),
+                        kernel,
+                    )
             } else {
-                self.load_buf
+                let mut bufs = std::mem::take(&mut self.load_scratch);
+                let r = self
+                    .load_buf
                     .chunks_mut(stride)
                     .enumerate()
-                    .try_for_each(kernel)
+                    .try_for_each(|item| kernel(&mut bufs, item));
+                self.load_scratch = bufs;
+                r
             };
             res?;
         }
@@ -670,14 +684,15 @@ fn load_element<P: LoadProvider + ?Sized>(
     scale: f64,
     fd_dfdx: bool,
     chunk: &mut [f64],
+    out: &mut ElementLoad,
+    tmp: &mut ElementLoad,
 ) -> Result<()> {
     let err = |m: crate::error::LoadError| FemError::Load {
         element: e,
         message: m.0,
     };
-    let mut out = ElementLoad::default();
     out.reset(nn);
-    prov.element_load(e, t, &xl[..nn], &vl[..nn], want, &mut out)
+    prov.element_load(e, t, &xl[..nn], &vl[..nn], want, out)
         .map_err(err)?;
     let nd = 3 * nn;
     for j in 0..nn {
@@ -700,7 +715,6 @@ fn load_element<P: LoadProvider + ?Sized>(
     }
     let jac = &mut chunk[12 * nn..12 * nn + nd * nd];
     jac.iter_mut().for_each(|v| *v = 0.0);
-    let mut tmp = ElementLoad::default();
     // Element size and speed for the perturbations.
     let mut size: f64 = 0.0;
     let mut speed: f64 = 0.0;
@@ -727,7 +741,7 @@ fn load_element<P: LoadProvider + ?Sized>(
                     vp[c / 3][c % 3] += sgn * h;
                 }
                 tmp.reset(nn);
-                prov.element_load(e, t, &xp[..nn], &vp[..nn], Want::default(), &mut tmp)
+                prov.element_load(e, t, &xp[..nn], &vp[..nn], Want::default(), tmp)
                     .map_err(err)?;
                 for r in 0..nd {
                     fp[r] += sgn * tmp.force[r / 3][r % 3];
