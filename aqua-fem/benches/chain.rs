@@ -97,7 +97,9 @@ fn bench(c: &mut Criterion) {
     // --- Time per step vs number of segments (2 s of the same motion from static).
     let mut g = c.benchmark_group("step_vs_segments");
     g.sample_size(10).measurement_time(Duration::from_secs(3));
-    for n in [20, 40, 80, 160, 320, 640, 1280] {
+    // 1280 segments is left out: the static solve fails on the long laid chain and the
+    // transient from the as-built polyline does not converge (see the crate report).
+    for n in [20, 40, 80, 160, 320, 640] {
         let (m, _) = chain_model(n);
         // Start from static equilibrium; if the static solver fails (it is slow and fragile
         // on long laid chains, see the report), start from the as-built state at rest.

@@ -72,6 +72,7 @@ pub struct ExplicitSolver<'m> {
     energies: Energies,
     e0: f64,
     n_steps: usize,
+    scratch: Vec<[f64; 3]>,
 }
 
 fn solve3(m: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
@@ -159,6 +160,7 @@ impl<'m> ExplicitSolver<'m> {
             acc: [z.clone(), z.clone(), z.clone(), z.clone()],
             vel: [z.clone(), z.clone(), z.clone(), z.clone()],
             fext_prev: z.clone(),
+            scratch: z.clone(),
             reac_prev: z.clone(),
             x_prev: z,
             power_prev: 0.0,
@@ -445,8 +447,9 @@ impl<'m> ExplicitSolver<'m> {
                     let ts = t + c * h;
                     let (mut xs, mut vs) =
                         (std::mem::take(&mut self.xs), std::mem::take(&mut self.vs));
-                    let mut scratch = self.acc[stage].clone();
+                    let mut scratch = std::mem::take(&mut self.scratch);
                     model.apply_constraints(ts, 1.0, &mut xs, &mut vs, &mut scratch);
+                    self.scratch = scratch;
                     let r = self.accel(provider, ts, &xs, &vs, stage);
                     self.vel[stage].copy_from_slice(&vs);
                     self.xs = xs;
