@@ -3,8 +3,26 @@
 //! Every subcommand lives in [`commands`]; `main.rs` only parses the command line, dispatches
 //! and maps errors to exit codes (2 for bad input, see [`InputError`]; 1 for a failed run).
 
+pub mod build;
 pub mod commands;
+pub mod output;
+pub mod provider;
 pub mod scene;
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Set by the Ctrl-C handler; long runs poll it between steps and stop cleanly.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Ask running solves to stop after the current step (called from the Ctrl-C handler).
+pub fn request_stop() {
+    INTERRUPTED.store(true, Ordering::SeqCst);
+}
+
+/// True once a stop was requested.
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::SeqCst)
+}
 
 use std::fmt;
 

@@ -20,13 +20,25 @@ enum Command {
     Waves(commands::waves::Args),
     /// Build a cage, panel or line or import a gmsh mesh; report groups, λ, diameters; write VTK.
     Mesh(commands::mesh::Args),
+    /// Validate a scene and print what a run will compute and what it will cost.
+    Check(commands::check::Args),
+    /// Run a scene: statics and/or dynamics, ParaView series, summary.csv, run.json.
+    Run(commands::run::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Ctrl-C asks the run to stop after the current step; its outputs stay consistent.
+    if ctrlc::set_handler(aqua_cli::request_stop).is_err() {
+        eprintln!(
+            "warning: cannot install the Ctrl-C handler; an interrupted run may leave a partial step"
+        );
+    }
     let result = match cli.command {
         Command::Waves(a) => commands::waves::run(a),
         Command::Mesh(a) => commands::mesh::run(a),
+        Command::Check(a) => commands::check::run(a),
+        Command::Run(a) => commands::run::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

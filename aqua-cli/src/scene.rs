@@ -1,9 +1,32 @@
-//! Reading scene files (TOML). Every error names the file and, through the TOML parser, the
-//! line and key.
+//! Scene files (TOML): the schema, and reading with errors that name the file, the line, the
+//! key and what would be valid.
+//!
+//! Layout (key names follow `shared/spec/`):
+//!
+//! ```toml
+//! name = "reference-cage"        # optional; default: the file stem
+//! [sea]                          # aqua-env (environment.md §1), plus [sea.seabed] kbot, cbot
+//! [[cage]]                       # aqua-mesh CageParams (cages.md §3) + net.* hydro keys
+//! [[panel]]                      # aqua-mesh PanelParams (cages.md §11) + net.* hydro keys
+//! [[line]]                       # aqua-mesh LineParams (cages.md §11) + Morison keys
+//! [[mesh]]                       # aqua-mesh GmshParams (cages.md §12) + net.* hydro keys
+//! [[group]]                      # per element group: section overrides + Morison keys
+//! [[point]]                      # point bodies on node groups (fem.md §6.3)
+//! [[fix]]                        # extra fixed DOFs (fem.md §7)
+//! [[prescribed]]                 # prescribed motions (fem.md §7)
+//! [analysis]                     # static / dynamic settings (fem.md §15)
+//! ```
 
 use crate::InputError;
 use aqua_env::SeaSpec;
-use std::path::Path;
+use aqua_hydro::morison::MorisonModelId;
+use aqua_hydro::screen::ScreenModelId;
+use aqua_hydro::wake::WakeSpec;
+use aqua_mesh::{CageParams, GmshParams, LineParams, PanelParams, SectionOverride};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use toml::{Spanned, Table, Value};
 
 /// Reads a file to a string, with an input error naming it.
 pub fn read_text(path: &Path) -> Result<String, InputError> {
@@ -29,5 +52,799 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
         toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)
     } else {
         toml::from_str::<SeaSpec>(&text).map_err(err)
+    }
+}
+
+/// How a net's drag is carried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NetDrag {
+    /// Screen panels carry drag and lift (twines only mass, buoyancy, inertia).
+    #[default]
+    Screen,
+    /// Twines carry Morison drag (no panels loaded).
+    Morison,
+}
+
+/// The hydrodynamic `net.*` keys of a cage, panel or gmsh mesh (hydrodynamics.md §1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NetHydro {
+    /// "screen" or "morison".
+    #[serde(default)]
+    pub drag: NetDrag,
+    /// Screen model id.
+    #[serde(default = "default_screen")]
+    pub screen_model: ScreenModelId,
+    /// C_D for screen_model = "const".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cd: Option<f64>,
+    /// C_L for screen_model = "const".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cl: Option<f64>,
+    /// Override of C_cyl(Re) in S3/S6.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cyl_cd: Option<f64>,
+    /// Twine Morison model when drag = "morison".
+    #[serde(default = "default_twine_morison")]
+    pub morison: MorisonModelId,
+    /// Wake model (default: loland for cages, none for panels and meshes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wake: Option<WakeSpec>,
+}
+
+fn default_screen() -> ScreenModelId {
+    ScreenModelId::S1
+}
+fn default_twine_morison() -> MorisonModelId {
+    MorisonModelId::M4
+}
+
+impl Default for NetHydro {
+    fn default() -> Self {
+        Self {
+            drag: NetDrag::Screen,
+            screen_model: default_screen(),
+            cd: None,
+            cl: None,
+            cyl_cd: None,
+            morison: default_twine_morison(),
+            wake: None,
+        }
+    }
+}
+
+/// The net.* keys that belong to hydrodynamics (the rest go to aqua-mesh).
+const NET_HYDRO_KEYS: &[&str] = &[
+    "drag",
+    "screen_model",
+    "cd",
+    "cl",
+    "cyl_cd",
+    "morison",
+    "wake",
+];
+
+/// Morison and inertia keys of a cable group (hydrodynamics.md §1, `[[group]]`, `[[line]]`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineHydro {
+    /// Morison model id (default M4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub morison: Option<MorisonModelId>,
+    /// C_n for morison = "const".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cn: Option<f64>,
+    /// C_t for morison = "const".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ct: Option<f64>,
+    /// Normal added-mass coefficient C_a (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub added_mass: Option<f64>,
+    /// Axial added-mass coefficient C_at (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub added_mass_axial: Option<f64>,
+    /// Froude–Krylov force (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub froude_krylov: Option<bool>,
+    /// Drag length L − d_h (default false).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knot_correction: Option<bool>,
+}
+
+const LINE_HYDRO_KEYS: &[&str] = &[
+    "morison",
+    "cn",
+    "ct",
+    "added_mass",
+    "added_mass_axial",
+    "froude_krylov",
+    "knot_correction",
+];
+
+/// `[[group]]`: settings of an element group by name, across objects.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GroupSpec {
+    /// Group name (e.g. "ropes", "net_twines", or a line's group).
+    pub name: String,
+    /// Section overrides (fem.md §4).
+    pub section: SectionOverride,
+    /// Morison and inertia keys.
+    pub hydro: LineHydro,
+}
+
+/// `[[point]]`: point bodies on every node of a node group (fem.md §6.3).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointSpec {
+    /// Node group reference ("group", "object/group" or "object/group[k]").
+    pub nodes: String,
+    /// Mass m [kg] per node.
+    #[serde(default)]
+    pub mass: f64,
+    /// Displaced volume V [m³] per node (buoyancy ρ g V when submerged).
+    #[serde(default)]
+    pub volume: f64,
+    /// Vertical extent for partial submergence [m].
+    #[serde(default)]
+    pub height: f64,
+    /// Added-mass coefficient (added mass C_a ρ V).
+    #[serde(default)]
+    pub added_mass_coefficient: f64,
+    /// Constant force [N].
+    #[serde(default)]
+    pub force: [f64; 3],
+    /// C_D·A [m²] for isotropic quadratic drag.
+    #[serde(default)]
+    pub drag_area: f64,
+    /// Seabed stiffness of the body [N/m].
+    #[serde(default)]
+    pub seabed_stiffness: f64,
+}
+
+/// `[[fix]]`: extra fixed DOFs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixSpec {
+    /// Node group reference.
+    pub nodes: String,
+    /// DOFs held ("x", "y", "z"; default all).
+    #[serde(default = "all_dofs")]
+    pub dofs: Vec<String>,
+}
+
+fn all_dofs() -> Vec<String> {
+    vec!["x".into(), "y".into(), "z".into()]
+}
+
+/// The kind of a prescribed motion (fem.md §7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MotionKind {
+    /// Constant offset.
+    Constant,
+    /// Linear ramp to an offset.
+    Ramp,
+    /// A·(1 − cos 2πt/T) with a smooth start (or A sin(2πt/T + φ) about `mean`).
+    Sine,
+    /// Table of t, dx, dy, dz (natural cubic spline).
+    Table,
+}
+
+/// `[[prescribed]]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribedSpec {
+    /// Node group reference.
+    pub nodes: String,
+    /// Motion kind.
+    pub motion: MotionKind,
+    /// Offset [m] for constant and ramp.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 3]>,
+    /// Amplitude vector [m] for sine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitude: Option<[f64; 3]>,
+    /// Mean offset [m] for sine (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mean: Option<[f64; 3]>,
+    /// Period [s] for sine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
+    /// Phase [deg] for sine.
+    #[serde(default)]
+    pub phase: f64,
+    /// Ramp / smooth-start duration [s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp_time: Option<f64>,
+    /// Rows [t, dx, dy, dz] for table.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<Vec<[f64; 4]>>,
+}
+
+/// `analysis.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum AnalysisKind {
+    /// Static equilibrium only.
+    #[serde(rename = "static")]
+    Static,
+    /// Dynamics only (from the as-built state at rest).
+    #[serde(rename = "dynamic")]
+    Dynamic,
+    /// Static equilibrium, then dynamics from it.
+    #[default]
+    #[serde(rename = "static+dynamic")]
+    StaticDynamic,
+}
+
+/// `[analysis.static]` (fem.md §9).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StaticSpec {
+    /// Relative force-residual tolerance.
+    #[serde(default = "d_static_tol")]
+    pub tol: f64,
+    /// Newton iterations per increment.
+    #[serde(default = "d_static_iter")]
+    pub max_iter: usize,
+    /// Initial number of load increments.
+    #[serde(default = "d_load_steps")]
+    pub load_steps: usize,
+    /// Smallest load increment.
+    #[serde(default = "d_min_load")]
+    pub min_load_step: f64,
+    /// Pseudo-viscous stabilisation ε_s (0 disables).
+    #[serde(default = "d_stab")]
+    pub stabilisation: f64,
+    /// Backtracking line search.
+    #[serde(default = "d_true")]
+    pub line_search: bool,
+}
+
+fn d_static_tol() -> f64 {
+    1e-6
+}
+fn d_static_iter() -> usize {
+    30
+}
+fn d_load_steps() -> usize {
+    4
+}
+fn d_min_load() -> f64 {
+    1e-4
+}
+fn d_stab() -> f64 {
+    1e-3
+}
+fn d_true() -> bool {
+    true
+}
+
+impl Default for StaticSpec {
+    fn default() -> Self {
+        Self {
+            tol: d_static_tol(),
+            max_iter: d_static_iter(),
+            load_steps: d_load_steps(),
+            min_load_step: d_min_load(),
+            stabilisation: d_stab(),
+            line_search: true,
+        }
+    }
+}
+
+/// `analysis.dynamic.scheme`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Scheme {
+    /// Implicit HHT-α.
+    #[default]
+    Hht,
+    /// Explicit lumped mass-spring, symplectic Euler.
+    SemiImplicitEuler,
+    /// Explicit lumped mass-spring, RK4.
+    Rk4,
+}
+
+/// `analysis.dynamic.mass_matrix`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MassSpec {
+    /// Lumped (default).
+    #[default]
+    Lumped,
+    /// Consistent.
+    Consistent,
+}
+
+/// `[analysis.dynamic]` (fem.md §10–§12).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicSpec {
+    /// Integrator.
+    #[serde(default)]
+    pub scheme: Scheme,
+    /// HHT α ∈ [0, 1/3] (default 0.3); exclusive with rho_inf.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alpha: Option<f64>,
+    /// Spectral radius at infinity ρ∞ ∈ [0.5, 1]; exclusive with alpha.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rho_inf: Option<f64>,
+    /// Time step [s] (HHT: nominal; explicit: upper bound, default the stable estimate).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dt: Option<f64>,
+    /// End time [s].
+    #[serde(default = "d_t_end")]
+    pub t_end: f64,
+    /// Smallest step before the run stops [s] (default dt/1024).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dt_min: Option<f64>,
+    /// Explicit: error instead of reducing a user dt above the stable step.
+    #[serde(default)]
+    pub dt_fixed: bool,
+    /// Newton tolerance (relative force residual).
+    #[serde(default = "d_dyn_tol")]
+    pub tol: f64,
+    /// Newton iterations per step.
+    #[serde(default = "d_dyn_iter")]
+    pub max_iter: usize,
+    /// Lumped or consistent mass.
+    #[serde(default)]
+    pub mass_matrix: MassSpec,
+    /// Rayleigh damping [a_M, a_K].
+    #[serde(default)]
+    pub rayleigh: [f64; 2],
+    /// Explicit stability factor.
+    #[serde(default = "d_cfl")]
+    pub cfl: f64,
+    /// Output interval [s] (default dt; at least every step).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub output_interval: Option<f64>,
+    /// Largest strain before a step is rejected.
+    #[serde(default = "d_max_strain")]
+    pub max_strain: f64,
+}
+
+fn d_t_end() -> f64 {
+    10.0
+}
+fn d_dyn_tol() -> f64 {
+    1e-5
+}
+fn d_dyn_iter() -> usize {
+    15
+}
+fn d_cfl() -> f64 {
+    0.5
+}
+fn d_max_strain() -> f64 {
+    1.0
+}
+
+impl Default for DynamicSpec {
+    fn default() -> Self {
+        Self {
+            scheme: Scheme::Hht,
+            alpha: None,
+            rho_inf: None,
+            dt: None,
+            t_end: d_t_end(),
+            dt_min: None,
+            dt_fixed: false,
+            tol: d_dyn_tol(),
+            max_iter: d_dyn_iter(),
+            mass_matrix: MassSpec::Lumped,
+            rayleigh: [0.0; 2],
+            cfl: d_cfl(),
+            output_interval: None,
+            max_strain: d_max_strain(),
+        }
+    }
+}
+
+/// `[analysis]`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// What to compute.
+    #[serde(default)]
+    pub kind: AnalysisKind,
+    /// Statics settings.
+    #[serde(default, rename = "static")]
+    pub statics: StaticSpec,
+    /// Dynamics settings.
+    #[serde(default)]
+    pub dynamic: DynamicSpec,
+}
+
+/// An object table with the line where it starts (for messages).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Located<T> {
+    /// 1-based line of the table header in the scene file.
+    pub line: usize,
+    /// The table's contents.
+    #[serde(flatten)]
+    pub value: T,
+}
+
+/// A cage with its hydrodynamic net keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CageSpec {
+    /// Geometry, frame, weights and materials (aqua-mesh).
+    #[serde(flatten)]
+    pub params: CageParams,
+    /// Net hydrodynamics.
+    pub net_hydro: NetHydro,
+}
+
+/// A flat net panel with its hydrodynamic net keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PanelSpec {
+    /// Geometry (aqua-mesh).
+    #[serde(flatten)]
+    pub params: PanelParams,
+    /// Net hydrodynamics.
+    pub net_hydro: NetHydro,
+}
+
+/// A single line with its Morison keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LineSpec {
+    /// Geometry and section (aqua-mesh).
+    #[serde(flatten)]
+    pub params: LineParams,
+    /// Morison and inertia keys.
+    pub hydro: LineHydro,
+}
+
+/// A gmsh mesh with its hydrodynamic net keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeshSpec {
+    /// File and transform (aqua-mesh).
+    #[serde(flatten)]
+    pub params: GmshParams,
+    /// Net hydrodynamics.
+    pub net_hydro: NetHydro,
+}
+
+/// A parsed, type-checked scene (cross-references are resolved when the model is built).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scene {
+    /// Scene name (file stem unless given).
+    pub name: String,
+    /// The file it came from.
+    #[serde(skip)]
+    pub path: PathBuf,
+    /// The sea.
+    pub sea: SeaSpec,
+    /// Cages.
+    pub cage: Vec<Located<CageSpec>>,
+    /// Flat panels.
+    pub panel: Vec<Located<PanelSpec>>,
+    /// Lines.
+    pub line: Vec<Located<LineSpec>>,
+    /// gmsh meshes.
+    pub mesh: Vec<Located<MeshSpec>>,
+    /// Group settings.
+    pub group: Vec<Located<GroupSpec>>,
+    /// Point bodies.
+    pub point: Vec<Located<PointSpec>>,
+    /// Extra fixed DOFs.
+    pub fix: Vec<Located<FixSpec>>,
+    /// Prescribed motions.
+    pub prescribed: Vec<Located<PrescribedSpec>>,
+    /// Analysis settings.
+    pub analysis: AnalysisSpec,
+}
+
+/// The raw file: typed where the schema is ours, tables with spans where keys are split
+/// between crates.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    sea: SeaSpec,
+    #[serde(default)]
+    cage: Vec<Spanned<Table>>,
+    #[serde(default)]
+    panel: Vec<Spanned<Table>>,
+    #[serde(default)]
+    line: Vec<Spanned<Table>>,
+    #[serde(default)]
+    mesh: Vec<Spanned<Table>>,
+    #[serde(default)]
+    group: Vec<Spanned<Table>>,
+    #[serde(default)]
+    point: Vec<Spanned<Table>>,
+    #[serde(default)]
+    fix: Vec<Spanned<Table>>,
+    #[serde(default)]
+    prescribed: Vec<Spanned<Table>>,
+    #[serde(default)]
+    analysis: AnalysisSpec,
+}
+
+/// 1-based line number of a byte offset.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+/// Moves the listed keys of `table` into a new table.
+fn split_keys(table: &mut Table, keys: &[&str]) -> Table {
+    let mut out = Table::new();
+    for k in keys {
+        if let Some(v) = table.remove(*k) {
+            out.insert((*k).to_string(), v);
+        }
+    }
+    out
+}
+
+struct Ctx<'a> {
+    path: &'a Path,
+    text: &'a str,
+}
+
+impl Ctx<'_> {
+    fn err(
+        &self,
+        section: &str,
+        index: usize,
+        line: usize,
+        msg: impl std::fmt::Display,
+    ) -> InputError {
+        InputError::new(format!(
+            "{}: line {line}: [[{section}]] #{}: {msg}",
+            self.path.display(),
+            index + 1
+        ))
+    }
+
+    fn typed<T: DeserializeOwned>(
+        &self,
+        section: &str,
+        index: usize,
+        line: usize,
+        prefix: &str,
+        table: Table,
+    ) -> Result<T, InputError> {
+        Value::Table(table).try_into::<T>().map_err(|e| {
+            let msg = e.to_string();
+            let msg = msg.trim();
+            if prefix.is_empty() {
+                self.err(section, index, line, msg)
+            } else {
+                self.err(section, index, line, format!("in {prefix}: {msg}"))
+            }
+        })
+    }
+
+    /// Splits the hydrodynamic `net.*` keys off an object table.
+    fn net_hydro(
+        &self,
+        section: &str,
+        index: usize,
+        line: usize,
+        table: &mut Table,
+    ) -> Result<NetHydro, InputError> {
+        let hydro = match table.get_mut("net") {
+            Some(Value::Table(net)) => split_keys(net, NET_HYDRO_KEYS),
+            Some(other) => {
+                return Err(self.err(
+                    section,
+                    index,
+                    line,
+                    format!("net = {other}: net must be a table of net.* keys"),
+                ));
+            }
+            None => Table::new(),
+        };
+        self.typed(section, index, line, "net", hydro)
+    }
+}
+
+/// Reads and type-checks a scene file.
+pub fn read_scene(path: &Path) -> Result<Scene, InputError> {
+    let text = read_text(path)?;
+    let raw: RawScene =
+        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
+    let ctx = Ctx { path, text: &text };
+    let name = raw.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into())
+    });
+    if name.is_empty() || name.contains(['/', '\\']) {
+        return Err(InputError::new(format!(
+            "{}: name = \"{name}\": a non-empty scene name without path separators",
+            path.display()
+        )));
+    }
+    let located = |s: &Spanned<Table>| (line_of(&text, s.span().start), s.get_ref().clone());
+
+    let mut cage = Vec::new();
+    for (i, s) in raw.cage.iter().enumerate() {
+        let (line, mut t) = located(s);
+        let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
+        let params: CageParams = ctx.typed("cage", i, line, "", t)?;
+        cage.push(Located {
+            line,
+            value: CageSpec { params, net_hydro },
+        });
+    }
+    let mut panel = Vec::new();
+    for (i, s) in raw.panel.iter().enumerate() {
+        let (line, mut t) = located(s);
+        let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
+        let params: PanelParams = ctx.typed("panel", i, line, "", t)?;
+        panel.push(Located {
+            line,
+            value: PanelSpec { params, net_hydro },
+        });
+    }
+    let mut mesh = Vec::new();
+    for (i, s) in raw.mesh.iter().enumerate() {
+        let (line, mut t) = located(s);
+        let net_hydro = ctx.net_hydro("mesh", i, line, &mut t)?;
+        let mut params: GmshParams = ctx.typed("mesh", i, line, "", t)?;
+        // gmsh files are found relative to the scene file.
+        if params.file.is_relative()
+            && let Some(dir) = path.parent()
+        {
+            params.file = dir.join(&params.file);
+        }
+        mesh.push(Located {
+            line,
+            value: MeshSpec { params, net_hydro },
+        });
+    }
+    let mut line_specs = Vec::new();
+    for (i, s) in raw.line.iter().enumerate() {
+        let (line, mut t) = located(s);
+        let hydro: LineHydro =
+            ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+        let params: LineParams = ctx.typed("line", i, line, "", t)?;
+        line_specs.push(Located {
+            line,
+            value: LineSpec { params, hydro },
+        });
+    }
+    let mut group = Vec::new();
+    for (i, s) in raw.group.iter().enumerate() {
+        let (line, mut t) = located(s);
+        let name = match t.remove("name") {
+            Some(Value::String(n)) => n,
+            Some(v) => {
+                return Err(ctx.err("group", i, line, format!("name = {v}: a group name string")));
+            }
+            None => {
+                return Err(ctx.err(
+                    "group",
+                    i,
+                    line,
+                    "name is missing: the element group to set (e.g. \"ropes\")",
+                ));
+            }
+        };
+        let hydro: LineHydro =
+            ctx.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+        let section: SectionOverride = ctx.typed("group", i, line, "", t)?;
+        group.push(Located {
+            line,
+            value: GroupSpec {
+                name,
+                section,
+                hydro,
+            },
+        });
+    }
+    let simple =
+        |section: &str, list: &[Spanned<Table>]| -> Result<Vec<(usize, Table)>, InputError> {
+            let _ = section;
+            Ok(list.iter().map(located).collect())
+        };
+    let mut point = Vec::new();
+    for (i, (line, t)) in simple("point", &raw.point)?.into_iter().enumerate() {
+        let value: PointSpec = ctx.typed("point", i, line, "", t)?;
+        point.push(Located { line, value });
+    }
+    let mut fix = Vec::new();
+    for (i, (line, t)) in simple("fix", &raw.fix)?.into_iter().enumerate() {
+        let value: FixSpec = ctx.typed("fix", i, line, "", t)?;
+        for d in &value.dofs {
+            if !matches!(d.as_str(), "x" | "y" | "z") {
+                return Err(ctx.err(
+                    "fix",
+                    i,
+                    line,
+                    format!("dofs contains \"{d}\": valid are \"x\", \"y\", \"z\""),
+                ));
+            }
+        }
+        fix.push(Located { line, value });
+    }
+    let mut prescribed = Vec::new();
+    for (i, (line, t)) in simple("prescribed", &raw.prescribed)?
+        .into_iter()
+        .enumerate()
+    {
+        let value: PrescribedSpec = ctx.typed("prescribed", i, line, "", t)?;
+        prescribed.push(Located { line, value });
+    }
+    let _ = &ctx.text;
+    Ok(Scene {
+        name,
+        path: path.to_path_buf(),
+        sea: raw.sea,
+        cage,
+        panel,
+        line: line_specs,
+        mesh,
+        group,
+        point,
+        fix,
+        prescribed,
+        analysis: raw.analysis,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(name: &str, text: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("aqua-scene-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    #[test]
+    fn cage_net_keys_are_split_between_mesh_and_hydro() {
+        let p = write(
+            "a.toml",
+            "[sea]\ndepth = 60\n\n[[cage]]\ntype = \"SSM\"\nnet.solidity = 0.2\nnet.screen_model = \"S2\"\n\
+             net.wake = { model = \"cheng\" }\n",
+        );
+        let s = read_scene(&p).unwrap();
+        assert_eq!(s.name, "a");
+        assert_eq!(s.cage[0].line, 4);
+        assert_eq!(s.cage[0].value.params.net.solidity, Some(0.2));
+        assert_eq!(s.cage[0].value.net_hydro.screen_model, ScreenModelId::S2);
+    }
+
+    #[test]
+    fn errors_name_file_line_section_and_key() {
+        let p = write(
+            "b.toml",
+            "[sea]\ndepth = 60\n\n\n[[cage]]\ntype = \"SSM\"\ncircumferense = 100\n",
+        );
+        let e = read_scene(&p).unwrap_err().to_string();
+        assert!(
+            e.contains("b.toml") && e.contains("line 5") && e.contains("[[cage]] #1"),
+            "{e}"
+        );
+        assert!(e.contains("circumferense"), "{e}");
+        let p = write(
+            "c.toml",
+            "[[cage]]\ntype = \"SSM\"\nnet.screen_model = \"S9\"\n",
+        );
+        let e = read_scene(&p).unwrap_err().to_string();
+        assert!(e.contains("S9") && e.contains("S1"), "{e}");
+        let p = write("d.toml", "[analysis]\nkind = \"quasi\"\n");
+        let e = read_scene(&p).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2") && e.contains("quasi") && e.contains("static+dynamic"),
+            "{e}"
+        );
+        let p = write(
+            "e.toml",
+            "[[line]]\nanchor = [0,0,-50]\nlength = 10\nmorison = \"M9\"\n",
+        );
+        let e = read_scene(&p).unwrap_err().to_string();
+        assert!(e.contains("[[line]] #1") && e.contains("M9"), "{e}");
     }
 }

@@ -62,6 +62,10 @@ pub struct SeaSpec {
     /// `[sea.waves]`.
     #[serde(default)]
     pub waves: WavesSpec,
+    /// `[sea.seabed]`: contact constants of the flat seabed at z = −depth (used by the
+    /// structural solver; carried here because the seabed belongs to the sea).
+    #[serde(default)]
+    pub seabed: SeabedSpec,
 }
 
 impl Default for SeaSpec {
@@ -72,6 +76,35 @@ impl Default for SeaSpec {
             water: WaterSpec::default(),
             current: CurrentSpec::default(),
             waves: WavesSpec::default(),
+            seabed: SeabedSpec::default(),
+        }
+    }
+}
+
+/// `[sea.seabed]` (fem spec §8): penalty pressure per metre of penetration and per m/s.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeabedSpec {
+    /// k_b [Pa/m] (default 3e6).
+    #[serde(default = "default_kbot")]
+    pub kbot: f64,
+    /// c_b [Pa·s/m] (default 3e5).
+    #[serde(default = "default_cbot")]
+    pub cbot: f64,
+}
+
+fn default_kbot() -> f64 {
+    3e6
+}
+fn default_cbot() -> f64 {
+    3e5
+}
+
+impl Default for SeabedSpec {
+    fn default() -> Self {
+        Self {
+            kbot: default_kbot(),
+            cbot: default_cbot(),
         }
     }
 }
@@ -475,7 +508,8 @@ impl SeaSpec {
         toml::from_str(text)
     }
 
-    fn constants(&self) -> Result<Constants, EnvError> {
+    /// g, ρ_w, ν and the depth, validated.
+    pub fn constants(&self) -> Result<Constants, EnvError> {
         let gravity = positive("sea.gravity", self.gravity, "m/s², e.g. 9.80665")?;
         let density = positive("sea.water.density", self.water.density, "kg/m³, e.g. 1025")?;
         let kinematic_viscosity = positive(
@@ -638,6 +672,14 @@ impl SeaSpec {
     /// Validates the table and builds the [`Sea`] and its summary (with warnings).
     pub fn build(&self, opts: &BuildOptions) -> Result<(Sea, SeaSummary), EnvError> {
         let c = self.constants()?;
+        for (key, v) in [
+            ("sea.seabed.kbot", self.seabed.kbot),
+            ("sea.seabed.cbot", self.seabed.cbot),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(EnvError::range(key, v, "a finite number >= 0"));
+            }
+        }
         let current = self.build_current(&c)?;
         let mut warnings = Vec::new();
         let w = &self.waves;

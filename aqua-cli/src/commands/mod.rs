@@ -1,4 +1,6 @@
 //! One module per `aqua` subcommand.
 
+pub mod check;
 pub mod mesh;
+pub mod run;
 pub mod waves;

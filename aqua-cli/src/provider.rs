@@ -1,0 +1,103 @@
+//! The bridge between the water loads (aqua-hydro) and the structural solver (aqua-fem):
+//! [`WaterLoads`] implements aqua-fem's `LoadProvider` with an aqua-hydro `LoadAssembly`.
+//!
+//! Neither crate knows the other; this is the one place that joins them.
+
+use aqua_env::Phase;
+use aqua_fem::{ElementLoad, LoadError, LoadProvider, Want};
+use aqua_hydro::assembly::{ElementOutput, Elements, LoadAssembly};
+
+/// Water loads for the structural solver: static phase (full current, no waves) or dynamic.
+#[derive(Debug)]
+pub struct WaterLoads {
+    /// The load assembly (sea, elements, wake, buffers).
+    pub assembly: LoadAssembly,
+    /// Which sea the solver sees.
+    pub phase: Phase,
+    /// Nodes that carry buoyancy (lines with a volume, point bodies with a volume).
+    buoyant: Vec<usize>,
+}
+
+impl WaterLoads {
+    /// Wraps an assembly for the given phase; `elements` are the ones it was built from.
+    pub fn new(assembly: LoadAssembly, phase: Phase, elements: &Elements) -> Self {
+        let mut buoyant: Vec<usize> = elements
+            .lines
+            .iter()
+            .filter(|l| l.props.volume_diameter > 0.0)
+            .flat_map(|l| l.nodes)
+            .chain(
+                elements
+                    .points
+                    .iter()
+                    .filter(|p| p.props.volume > 0.0)
+                    .map(|p| p.node),
+            )
+            .collect();
+        buoyant.sort_unstable();
+        buoyant.dedup();
+        Self {
+            assembly,
+            phase,
+            buoyant,
+        }
+    }
+}
+
+impl LoadProvider for WaterLoads {
+    fn n_elements(&self) -> usize {
+        self.assembly.n_elements()
+    }
+
+    fn element_nodes(&self, e: usize) -> &[usize] {
+        self.assembly.element_nodes(e)
+    }
+
+    fn prepare(&mut self, t: f64, x: &[[f64; 3]], _v: &[[f64; 3]]) -> Result<(), LoadError> {
+        self.assembly
+            .prepare(t, self.phase, x)
+            .map_err(|e| LoadError(e.to_string()))
+    }
+
+    fn element_load(
+        &self,
+        e: usize,
+        _t: f64,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        want: Want,
+        out: &mut ElementLoad,
+    ) -> Result<(), LoadError> {
+        let mut local = ElementOutput::default();
+        let hw = aqua_hydro::Want {
+            dfdv: want.dfdv,
+            dfdx: want.dfdx,
+        };
+        self.assembly.element_load(e, x, v, hw, &mut local);
+        let n = x.len();
+        let dofs = 3 * n;
+        out.force[..n].copy_from_slice(&local.force[..n]);
+        out.added_mass[..n].copy_from_slice(&local.added_mass[..n]);
+        if want.dfdv {
+            for r in 0..dofs {
+                out.dfdv[r][..dofs].copy_from_slice(&local.dfdv[r][..dofs]);
+            }
+            out.has_dfdv = true;
+        }
+        if want.dfdx {
+            for r in 0..dofs {
+                out.dfdx[r][..dofs].copy_from_slice(&local.dfdx[r][..dofs]);
+            }
+            out.has_dfdx = true;
+        }
+        Ok(())
+    }
+
+    fn mark_restoring_nodes(&self, held: &mut [bool]) {
+        for &n in &self.buoyant {
+            if let Some(h) = held.get_mut(n) {
+                *h = true;
+            }
+        }
+    }
+}
