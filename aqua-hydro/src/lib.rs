@@ -1,0 +1,48 @@
+//! aqua-hydro — loads from the water on nets, lines and point bodies (specification:
+//! `shared/spec/hydrodynamics.md`). It knows nothing about solvers: given a sea
+//! ([`aqua_env::Sea`]), a time, node positions and velocities, it returns nodal forces,
+//! added-mass blocks and the closed-form derivatives ∂f/∂v (hydrodynamic damping) and ∂f/∂x.
+//!
+//! Conventions: SI units, z up, z = 0 at still water; forces act on the structure.
+//!
+//! Governing equations (ρ_w, ν, g from the sea; r the wake factor of the element):
+//! - Relative velocity U_r = r·mean U_c + mean u_w − mean v, s = |U_r|, û = U_r/s; zero
+//!   drag below s = 1e-12 m/s; Reynolds numbers clamped to 1e7.
+//! - Net panels (triangles; quads as four triangles of weight ½), oriented normal n (n·U_r ≥ 0),
+//!   c = cos θ = n·û: F = ½ρ_w·φ·A·[C_D·s·U_r + G·(s²n − (n·U_r)U_r)], G = C_L/sin θ, with the
+//!   screen models S1–S6, bi2014 and const of [`screen`]; S4 in its native form
+//!   ½ρ_w·φ·A·[C_n(n·U_r)²n + C_t|U_t|U_t]. φ is the exact wet-area fraction.
+//! - Lines (Morison): F = ½ρ_w·φ̄·d_h·ℓ·[C_n|U_n|U_n + C_t|U_t|U_t] plus
+//!   ρ_w·φ̄·A_v·L0·[(1 + C_a)P_n + C_at·P_t]·ā_f plus ρ_w·g·A_v·L0·φ̄·ẑ, added mass
+//!   ρ_w·φ̄·A_v·L0·(C_a·P_n + C_at·P_t); models M1–M5 and const of [`morison`].
+//! - Point bodies: F = φ_p·[½ρ_w(C_D A)|U_r|U_r + ρ_w V(1 + C_a)ā_f + ρ_w g V ẑ].
+//! - Wake: r = 1, clamp(f), 1 − 0.46·C_D0 (Løland) or clamp((c + 0.05 − 0.38Sn)/(c + 0.05))
+//!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]).
+//! - Linearisation: with J_w = ∂F/∂U_r of an element of n nodes and equal force shares,
+//!   ∂f_i/∂v_j = −J_w/n² for every node pair (spec §7).
+//!
+//! Entry point: [`LoadAssembly`], built once from [`Elements`]; see [`assembly`] for the
+//! output layout.
+
+pub mod assembly;
+pub mod cylinder;
+pub mod error;
+pub mod line;
+pub mod morison;
+pub mod panel;
+pub mod point;
+pub mod screen;
+pub mod wake;
+pub mod wetted;
+
+pub use assembly::{
+    Block, Diagnostics, ElementOutput, Elements, LineElement, LoadAssembly, NetPanel, NetSummary,
+    Outputs, PanelNodes, PointElement, WakeGroup,
+};
+pub use error::HydroError;
+pub use line::LineProps;
+pub use morison::{MorisonCoeffs, MorisonModel, MorisonModelId};
+pub use panel::{NetProps, Want};
+pub use point::PointProps;
+pub use screen::{ScreenModel, ScreenModelId};
+pub use wake::{Wake, WakeCell, WakeModel, WakeModelId, WakeSpec, WakeUpdate};
