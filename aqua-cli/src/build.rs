@@ -52,8 +52,25 @@ pub struct Built {
     pub supported_nodes: Vec<usize>,
     /// Net panels grouped per net (object, copy) for the enclosed-volume output.
     pub nets: Vec<NetCells>,
+    /// Per `[[line]]`: name, anchor node, fairlead node, first and last element.
+    pub line_ends: Vec<LineEnds>,
     /// Warnings and notices collected while building.
     pub notices: Vec<String>,
+}
+
+/// The two ends of a single line (fem.md §14: report end reactions and end-element tensions).
+#[derive(Debug, Clone)]
+pub struct LineEnds {
+    /// Line object name.
+    pub name: String,
+    /// Anchor node.
+    pub anchor: usize,
+    /// Fairlead node.
+    pub fairlead: usize,
+    /// Element at the anchor.
+    pub anchor_element: usize,
+    /// Element at the fairlead.
+    pub fairlead_element: usize,
 }
 
 /// The panels of one net (one cage copy, panel or gmsh net).
@@ -673,6 +690,32 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
     for w in &sea_summary.warnings {
         notices.push(w.clone());
     }
+    let mut line_ends = Vec::new();
+    for (oi, obj) in mesh.objects.iter().enumerate() {
+        if !matches!(obj.kind, ObjectKind::Line) {
+            continue;
+        }
+        let node = |g: &str| {
+            mesh.groups
+                .iter()
+                .find(|x| x.object == oi as u32 && x.name == g)
+                .and_then(|x| x.nodes.first().copied())
+        };
+        let elems: Vec<usize> = (0..mesh.lines.len())
+            .filter(|&e| mesh.lines[e].object == oi as u32)
+            .collect();
+        if let (Some(a), Some(f), Some(&first), Some(&last)) =
+            (node("anchor"), node("fairlead"), elems.first(), elems.last())
+        {
+            line_ends.push(LineEnds {
+                name: obj.name.clone(),
+                anchor: a,
+                fairlead: f,
+                anchor_element: first,
+                fairlead_element: last,
+            });
+        }
+    }
     Ok(Built {
         mesh,
         model,
@@ -684,6 +727,7 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
         group_names,
         supported_nodes: supported.into_iter().collect(),
         nets: nets_out,
+        line_ends,
         notices,
     })
 }

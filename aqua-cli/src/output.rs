@@ -30,6 +30,9 @@ pub struct SummaryRow {
     pub volume_ratio: f64,
     /// Largest tension per structural group [N].
     pub max_tension: Vec<f64>,
+    /// Per line: |R| at the anchor, |R| at the fairlead, tension of the anchor element and of
+    /// the fairlead element [N].
+    pub line_ends: Vec<[f64; 4]>,
     /// Newton iterations of the step (statics: all iterations).
     pub iterations: usize,
     /// Step size [s] (0 for statics).
@@ -128,6 +131,12 @@ impl RunOutput {
         let mut header = String::from("t,Fx_net,Fy_net,Fz_net,Rx,Ry,Rz,volume,volume_ratio");
         for g in &built.group_names {
             header.push_str(&format!(",Tmax_{}", g.replace(',', "_")));
+        }
+        for l in &built.line_ends {
+            let n = l.name.replace(',', "_");
+            header.push_str(&format!(
+                ",{n}_anchor_reaction,{n}_fairlead_reaction,{n}_anchor_element_tension,{n}_fairlead_element_tension"
+            ));
         }
         header.push_str(",newton_iterations,dt");
         writeln!(csv, "{header}")?;
@@ -241,17 +250,31 @@ impl RunOutput {
             })
             .map(|t| if t.is_finite() { t } else { 0.0 })
             .collect();
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let line_ends = built
+            .line_ends
+            .iter()
+            .map(|l| {
+                [
+                    norm(out.reaction[l.anchor]),
+                    norm(out.reaction[l.fairlead]),
+                    out.tension[l.anchor_element],
+                    out.tension[l.fairlead_element],
+                ]
+            })
+            .collect();
         let row = SummaryRow {
             t: state.t,
             net_force,
             reaction,
-            volume,
+            volume: volume + 0.0,
             volume_ratio: if self.volume0 > 0.0 {
                 volume / self.volume0
             } else {
                 0.0
             },
             max_tension,
+            line_ends,
             iterations,
             dt,
         };
@@ -269,6 +292,11 @@ impl RunOutput {
         );
         for t in &row.max_tension {
             line.push_str(&format!(",{t}"));
+        }
+        for l in &row.line_ends {
+            for v in l {
+                line.push_str(&format!(",{v}"));
+            }
         }
         line.push_str(&format!(",{},{}", row.iterations, row.dt));
         writeln!(self.csv, "{line}")?;
