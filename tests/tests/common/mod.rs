@@ -1,0 +1,59 @@
+//! Shared helpers of the end-to-end tests: run a scene through `aqua run` (the library entry
+//! point of the binary) and read its outputs back.
+
+#![allow(dead_code)]
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// A fresh scratch directory for one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("aqua-e2e-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `text` as a scene file in `dir` and runs it; returns the output directory.
+pub fn run_text(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).unwrap();
+    run_file(&scene, &dir.join(format!("{name}-out")))
+}
+
+/// Runs a scene file into `out`.
+pub fn run_file(scene: &Path, out: &Path) -> PathBuf {
+    aqua_cli::commands::run::run(aqua_cli::commands::run::Args {
+        scene: scene.to_path_buf(),
+        out: out.to_path_buf(),
+        quiet: true,
+    })
+    .unwrap_or_else(|e| panic!("run of {} failed: {e:#}", scene.display()));
+    out.to_path_buf()
+}
+
+/// summary.csv as rows of column → value.
+pub fn summary(out: &Path) -> Vec<HashMap<String, f64>> {
+    let text = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(|v| v.parse::<f64>().unwrap()))
+                .collect()
+        })
+        .collect()
+}
+
+/// The example scene text.
+pub fn example(name: &str) -> String {
+    std::fs::read_to_string(root().join("examples").join(name)).unwrap()
+}

@@ -1,0 +1,52 @@
+//! The bundled mooring chain: the static fairlead and anchor reactions against the elastic
+//! catenary with touchdown on a frictionless seabed (fem.md §16), solved here independently.
+
+mod common;
+use common::*;
+
+/// (H, V_B) of an elastic catenary with touchdown: anchor on the seabed, fairlead l away and h
+/// above it, unstretched length L0, submerged weight w per metre, axial stiffness EA.
+fn touchdown(l: f64, h: f64, l0: f64, w: f64, ea: f64) -> (f64, f64) {
+    let f = |hh: f64, v: f64| {
+        let laid = l0 - v / w;
+        (
+            laid + hh / w * (v / hh).asinh() + hh * l0 / ea - l,
+            hh / w * ((1.0 + (v / hh).powi(2)).sqrt() - 1.0) + v * v / (2.0 * ea * w) - h,
+        )
+    };
+    let (mut hh, mut v) = (0.3 * w * l0, 0.5 * w * l0);
+    for _ in 0..100 {
+        let (f0, f1) = f(hh, v);
+        let e = 1e-6 * hh.max(1.0);
+        let (a0, a1) = f(hh + e, v);
+        let (b0, b1) = f(hh, v + e);
+        let j = [[(a0 - f0) / e, (b0 - f0) / e], [(a1 - f1) / e, (b1 - f1) / e]];
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        hh -= (f0 * j[1][1] - f1 * j[0][1]) / det;
+        v -= (j[0][0] * f1 - j[1][0] * f0) / det;
+    }
+    (hh, v)
+}
+
+#[test]
+fn chain_end_reactions_match_the_elastic_catenary() {
+    let dir = scratch("chain");
+    // Statics only (the dynamic part of the example is exercised by the CLI tests).
+    let text = example("mooring-chain.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
+    let out = run_text(&dir, "chain", &text);
+    let row = &summary(&out)[0];
+    let g = 9.80665;
+    let d = 0.1354f64;
+    let w = (113.0 - 1025.0 * std::f64::consts::FRAC_PI_4 * d * d) * g;
+    // Laid nodes sink w/(k_b·d_c) into the penalty seabed: the effective height grows by that.
+    let sink = w / (3e6 * d);
+    let (hh, v) = touchdown(100.0, 45.0 + sink, 120.0, w, 5.4e8);
+    let t_fair = hh.hypot(v);
+    let fair = row["chain_fairlead_reaction"];
+    let anchor = row["chain_anchor_reaction"];
+    assert!((fair / t_fair - 1.0).abs() < 5e-4, "fairlead {fair} vs {t_fair}");
+    assert!((anchor / hh - 1.0).abs() < 5e-4, "anchor {anchor} vs H = {hh}");
+    // The end-element tension differs from the end reaction by the lumped half-element weight.
+    let te = row["chain_fairlead_element_tension"];
+    assert!(te < fair && fair - te < 0.6 * w * 1.5 + 1.0, "element {te} vs reaction {fair}");
+}
