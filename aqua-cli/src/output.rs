@@ -26,6 +26,8 @@ pub struct SummaryRow {
     pub reaction: [f64; 3],
     /// Enclosed net volume [m³] (cages; 0 without a closed net).
     pub volume: f64,
+    /// Moment of the reactions about the origin [N·m].
+    pub reaction_moment: [f64; 3],
     /// Volume over the undeformed volume.
     pub volume_ratio: f64,
     /// Largest tension per structural group [N].
@@ -128,7 +130,8 @@ impl RunOutput {
         let mut csv = std::io::BufWriter::new(
             std::fs::File::create(&path).with_context(|| format!("creating {}", path.display()))?,
         );
-        let mut header = String::from("t,Fx_net,Fy_net,Fz_net,Rx,Ry,Rz,volume,volume_ratio");
+        let mut header =
+            String::from("t,Fx_net,Fy_net,Fz_net,Rx,Ry,Rz,Mx,My,Mz,volume,volume_ratio");
         for g in &built.group_names {
             header.push_str(&format!(",Tmax_{}", g.replace(',', "_")));
         }
@@ -233,10 +236,12 @@ impl RunOutput {
         self.series
             .write_step(state.t, mesh, Some(&positions), &VtkArrays { point, cell })?;
         let mut reaction = [0.0; 3];
+        let mut moment = Vector3::zeros();
         for &n in &built.supported_nodes {
             for k in 0..3 {
                 reaction[k] += out.reaction[n][k];
             }
+            moment += Vector3::from(x[n]).cross(&Vector3::from(out.reaction[n]));
         }
         let volume = total_volume(built, x);
         let max_tension: Vec<f64> = model
@@ -267,6 +272,7 @@ impl RunOutput {
             t: state.t,
             net_force,
             reaction,
+            reaction_moment: [moment.x, moment.y, moment.z],
             volume: volume + 0.0,
             volume_ratio: if self.volume0 > 0.0 {
                 volume / self.volume0
@@ -279,7 +285,7 @@ impl RunOutput {
             dt,
         };
         let mut line = format!(
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
             row.t,
             row.net_force[0],
             row.net_force[1],
@@ -287,6 +293,9 @@ impl RunOutput {
             row.reaction[0],
             row.reaction[1],
             row.reaction[2],
+            row.reaction_moment[0],
+            row.reaction_moment[1],
+            row.reaction_moment[2],
             row.volume,
             row.volume_ratio
         );

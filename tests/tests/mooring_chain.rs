@@ -20,7 +20,10 @@ fn touchdown(l: f64, h: f64, l0: f64, w: f64, ea: f64) -> (f64, f64) {
         let e = 1e-6 * hh.max(1.0);
         let (a0, a1) = f(hh + e, v);
         let (b0, b1) = f(hh, v + e);
-        let j = [[(a0 - f0) / e, (b0 - f0) / e], [(a1 - f1) / e, (b1 - f1) / e]];
+        let j = [
+            [(a0 - f0) / e, (b0 - f0) / e],
+            [(a1 - f1) / e, (b1 - f1) / e],
+        ];
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         hh -= (f0 * j[1][1] - f1 * j[0][1]) / det;
         v -= (j[0][0] * f1 - j[1][0] * f0) / det;
@@ -32,7 +35,8 @@ fn touchdown(l: f64, h: f64, l0: f64, w: f64, ea: f64) -> (f64, f64) {
 fn chain_end_reactions_match_the_elastic_catenary() {
     let dir = scratch("chain");
     // Statics only (the dynamic part of the example is exercised by the CLI tests).
-    let text = example("mooring-chain.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
+    let text =
+        example("mooring-chain.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
     let out = run_text(&dir, "chain", &text);
     let row = &summary(&out)[0];
     let g = 9.80665;
@@ -44,9 +48,18 @@ fn chain_end_reactions_match_the_elastic_catenary() {
     let t_fair = hh.hypot(v);
     let fair = row["chain_fairlead_reaction"];
     let anchor = row["chain_anchor_reaction"];
-    assert!((fair / t_fair - 1.0).abs() < 5e-4, "fairlead {fair} vs {t_fair}");
-    assert!((anchor / hh - 1.0).abs() < 5e-4, "anchor {anchor} vs H = {hh}");
+    assert!(
+        (fair / t_fair - 1.0).abs() < 5e-4,
+        "fairlead {fair} vs {t_fair}"
+    );
+    assert!(
+        (anchor / hh - 1.0).abs() < 5e-4,
+        "anchor {anchor} vs H = {hh}"
+    );
     // The end-element tension differs from the end reaction by the lumped half-element weight.
     let te = row["chain_fairlead_element_tension"];
-    assert!(te < fair && fair - te < 0.6 * w * 1.5 + 1.0, "element {te} vs reaction {fair}");
+    assert!(
+        te < fair && fair - te < 0.6 * w * 1.5 + 1.0,
+        "element {te} vs reaction {fair}"
+    );
 }

@@ -20,7 +20,11 @@ fn example_panel_force_is_half_rho_a_u2_cd() {
     assert_eq!(rows.len(), 1, "static run: one output step");
     let q = 0.5 * 1025.0 * 1.0 * 0.5 * 0.5;
     let (cd, _) = s1(0.2, 0.0);
-    assert!((rows[0]["Fx_net"] / (q * cd) - 1.0).abs() < 1e-9, "{}", rows[0]["Fx_net"]);
+    assert!(
+        (rows[0]["Fx_net"] / (q * cd) - 1.0).abs() < 1e-9,
+        "{}",
+        rows[0]["Fx_net"]
+    );
     assert!(rows[0]["Fy_net"].abs() < 1e-9 * q);
     // The supports hold the panel against the drag.
     assert!((rows[0]["Rx"] + rows[0]["Fx_net"]).abs() < 1e-6 * q);
@@ -39,6 +43,14 @@ fn yawed_panel_has_drag_and_lift_of_the_model() {
     let q = 0.5 * 1025.0 * 1.0 * 0.25;
     let (cd, cl) = s1(0.2, theta);
     // Flow along +x: drag along +x, lift ⟂ flow on the side of the normal (+y).
-    assert!((row["Fx_net"] / (q * cd) - 1.0).abs() < 1e-9, "drag {}", row["Fx_net"]);
-    assert!((row["Fy_net"] / (q * cl) - 1.0).abs() < 1e-9, "lift {}", row["Fy_net"]);
+    assert!(
+        (row["Fx_net"] / (q * cd) - 1.0).abs() < 1e-9,
+        "drag {}",
+        row["Fx_net"]
+    );
+    assert!(
+        (row["Fy_net"] / (q * cl) - 1.0).abs() < 1e-9,
+        "lift {}",
+        row["Fy_net"]
+    );
 }
