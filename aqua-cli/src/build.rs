@@ -319,6 +319,12 @@ fn motion(p: &PrescribedSpec) -> Result<Motion, String> {
 /// Builds the whole model of a scene.
 pub fn build(scene: &Scene) -> Result<Built, InputError> {
     let file = scene.path.display().to_string();
+    // Sea errors first: they are independent of the structure (the real build below needs
+    // the structure's top for the irregular band).
+    scene
+        .sea
+        .build(&BuildOptions::default())
+        .map_err(|e| input(format!("{file}: {e}")))?;
     let (mesh, nets) = build_mesh(scene)?;
     let mut notices = mesh.notices.clone();
 
@@ -704,9 +710,12 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
         let elems: Vec<usize> = (0..mesh.lines.len())
             .filter(|&e| mesh.lines[e].object == oi as u32)
             .collect();
-        if let (Some(a), Some(f), Some(&first), Some(&last)) =
-            (node("anchor"), node("fairlead"), elems.first(), elems.last())
-        {
+        if let (Some(a), Some(f), Some(&first), Some(&last)) = (
+            node("anchor"),
+            node("fairlead"),
+            elems.first(),
+            elems.last(),
+        ) {
             line_ends.push(LineEnds {
                 name: obj.name.clone(),
                 anchor: a,
