@@ -988,8 +988,8 @@ impl LoadAssembly {
         self.stats.publish(&local);
     }
 
-    /// Everything at once: [`prepare`](Self::prepare), all elements (in parallel), and the
-    /// nodal sums. `x`, `v`: node positions [m] and velocities [m/s] (length `n_nodes`).
+    /// Everything at once: [`prepare`](Self::prepare) then [`assemble`](Self::assemble).
+    /// `x`, `v`: node positions [m] and velocities [m/s] (length `n_nodes`) at time t [s].
     /// Fills `out` (see [`Outputs`]; Jacobian layout in the module docs) and allocates
     /// nothing.
     pub fn evaluate(
@@ -1000,6 +1000,19 @@ impl LoadAssembly {
         v: &[[f64; 3]],
         out: Outputs<'_>,
     ) -> Result<(), HydroError> {
+        self.prepare(t, phase, x)?;
+        self.assemble(x, v, out)
+    }
+
+    /// All elements (in parallel) and the nodal sums, with the flow cached by the last
+    /// [`prepare`](Self::prepare) (call that first at the same positions).
+    pub fn assemble(
+        &mut self,
+        x: &[[f64; 3]],
+        v: &[[f64; 3]],
+        out: Outputs<'_>,
+    ) -> Result<(), HydroError> {
+        self.check_len("positions", x.len())?;
         self.check_len("velocities", v.len())?;
         self.check_len("forces", out.forces.len())?;
         if let Some(m) = &out.added_mass {
@@ -1021,7 +1034,6 @@ impl LoadAssembly {
                 ));
             }
         }
-        self.prepare(t, phase, x)?;
         let want = Want {
             dfdv: out.dfdv.is_some(),
             dfdx: out.dfdx.is_some(),
@@ -1191,22 +1203,28 @@ impl LoadAssembly {
                 let weight = if el.kind == Kind::Quad { 0.5 } else { 1.0 };
                 let mut re_lo = f64::INFINITY;
                 let mut re_hi: f64 = 0.0;
+                // per node: r·U_c + u_w − v, position, submergence; a piece's relative velocity
+                // is the mean over its nodes (for a quad: (sum − left-out node)/3)
+                let mut wn = [V3::zeros(); MAX_NODES];
+                let mut pn = [V3::zeros(); MAX_NODES];
+                let mut zn = [0.0; MAX_NODES];
+                let mut wsum = V3::zeros();
+                for i in 0..el.n {
+                    let f = fl(i);
+                    wn[i] = r * V3::from(f.current) + V3::from(f.wave_vel) - V3::from(v[i]);
+                    wsum += wn[i];
+                    pn[i] = V3::from(x[i]);
+                    zn[i] = f.eta - x[i][2];
+                }
                 for k in 0..el.n_pieces() {
                     let nodes = el.piece(k);
-                    let mut uc = V3::zeros();
-                    let mut uw = V3::zeros();
-                    let mut vb = V3::zeros();
-                    let mut p = [V3::zeros(); 3];
-                    let mut zeta = [0.0; 3];
-                    for (q, &i) in nodes.iter().enumerate() {
-                        let f = fl(i);
-                        uc += V3::from(f.current);
-                        uw += V3::from(f.wave_vel);
-                        vb += V3::from(v[i]);
-                        p[q] = V3::from(x[i]);
-                        zeta[q] = f.eta - x[i][2];
-                    }
-                    let w = (r * uc + uw - vb) / 3.0;
+                    let w = if el.kind == Kind::Quad {
+                        (wsum - wn[k]) / 3.0
+                    } else {
+                        wsum / 3.0
+                    };
+                    let p = [pn[nodes[0]], pn[nodes[1]], pn[nodes[2]]];
+                    let zeta = [zn[nodes[0]], zn[nodes[1]], zn[nodes[2]]];
                     let t =
                         panel::triangle(&panel.net, p, zeta, w, weight, self.rho, self.nu, want);
                     if t.reynolds > 0.0 {

@@ -120,7 +120,7 @@ pub fn triangle(
                 let t = wt / wtn;
                 inner += nt.ct * wtn * (pt + t * t.transpose());
             }
-            jw = kt * inner;
+            jw = (kt * phi) * inner;
         }
         if want.dfdx {
             let mut inner =
@@ -145,14 +145,25 @@ pub fn triangle(
         let mut jw = M3::zeros();
         let mut da = M3::zeros();
         if want.dfdv {
-            let mut inner =
-                s * k.cd * (id + uu) + s * k.s_cd_s * uu + s * k.cd_c * u * m.transpose();
-            if lift_on {
-                inner += s * g * (2.0 * n * u.transpose() - u * n.transpose() - c * id)
-                    + s * k.g_c * m * m.transpose()
-                    + s * k.s_g_s * m * u.transpose();
+            // J/K = s·C_D(I + ûûᵀ) + s²C_D,s ûûᵀ + s·C_D,c û mᵀ
+            //     + s·G(2nûᵀ − ûnᵀ − cI) + s·G_c m mᵀ + s²G_s m ûᵀ
+            // grouped as a·I + û pᵀ + n qᵀ + m rᵀ (three outer products)
+            let (sg, sgc, sgs) = if lift_on {
+                (s * g, s * k.g_c, s * k.s_g_s)
+            } else {
+                (0.0, 0.0, 0.0)
+            };
+            let a = s * k.cd - sg * c;
+            let kphi = kt * phi;
+            let pv = (s * (k.cd + k.s_cd_s)) * u + (s * k.cd_c) * m - sg * n;
+            let qv = (2.0 * sg) * u;
+            let rv = sgc * m + sgs * u;
+            for r in 0..3 {
+                for col in 0..3 {
+                    jw[(r, col)] = kphi * (u[r] * pv[col] + n[r] * qv[col] + m[r] * rv[col]);
+                }
+                jw[(r, r)] += kphi * a;
             }
-            jw = kt * inner;
         }
         if want.dfdx {
             let q = u - c * n;
@@ -166,7 +177,7 @@ pub fn triangle(
     };
     out.force = phi * f_tilde;
     if want.dfdv {
-        out.dfdw = phi * jw_tilde;
+        out.dfdw = jw_tilde;
     }
     if want.dfdx {
         // a = sign·a0; ∂a0/∂p1 = ½[p3 − p2]×, ∂a0/∂p2 = ½[p1 − p3]×, ∂a0/∂p3 = ½[p2 − p1]×
