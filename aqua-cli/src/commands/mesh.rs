@@ -46,6 +46,9 @@ pub struct Args {
     /// Import a gmsh .msh file (MSH 4.1 ASCII/binary or 2.2 ASCII) instead of building.
     #[arg(long, conflicts_with = "kind")]
     pub from: Option<PathBuf>,
+    /// Build the whole structure of a scene file (its cages, panels, meshes and lines).
+    #[arg(long, conflicts_with_all = ["kind", "from"])]
+    pub scene: Option<PathBuf>,
     /// Write the mesh to this XML .vtu file.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -408,6 +411,11 @@ pub fn report(mesh: &Mesh, out: Option<&Path>, json: bool) -> anyhow::Result<()>
 pub fn run(args: Args) -> anyhow::Result<()> {
     let out = args.out.clone();
     let out = out.as_deref();
+    if let Some(path) = &args.scene {
+        let scene = crate::scene::read_scene(path)?;
+        let (mesh, _) = crate::build::build_mesh(&scene)?;
+        return report(&mesh, out, args.json);
+    }
     if let Some(file) = &args.from {
         reject_others(&args, "--from", &["gmsh", "net", "origin"])?;
         let mut rename = std::collections::BTreeMap::new();

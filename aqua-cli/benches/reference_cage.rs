@@ -1,0 +1,96 @@
+//! The reference cage (examples/reference-cage.toml: SSM, 1057 nodes, 1920 cable elements,
+//! 672 screen panels, 0.5 m/s current), 10 s simulated at dt = 0.1 s with HHT-α (α = 0.3):
+//! time per dynamic step, (a) continuing from the static equilibrium (the example's run) and
+//! (b) starting from the as-built net at rest with the current ramped up over 10 s (the hard
+//! case: the net swings back). Issue target: under 8 ms per step.
+
+use aqua_cli::build::build;
+use aqua_cli::commands::run::static_settings;
+use aqua_cli::provider::WaterLoads;
+use aqua_cli::scene::read_scene;
+use aqua_env::Phase;
+use aqua_fem::{DynamicSettings, DynamicSolver, State, solve_static};
+use aqua_hydro::assembly::LoadAssembly;
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+fn bench(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/reference-cage.toml");
+    let scene = read_scene(&path).expect("scene");
+    let built = build(&scene).expect("model");
+    let assembly = LoadAssembly::new(
+        built.sea.clone(),
+        built.model.n_nodes(),
+        built.elements.clone(),
+    )
+    .unwrap();
+    let mut loads = WaterLoads::new(assembly, Phase::Static, &built.elements);
+    let t = Instant::now();
+    let stat = solve_static(&built.model, &mut loads, &static_settings(&scene)).expect("statics");
+    eprintln!(
+        "static solve: {:.2} s, {} Newton iterations",
+        t.elapsed().as_secs_f64(),
+        stat.report.iterations
+    );
+    loads.phase = Phase::Dynamic;
+    let run = |initial: Option<&State>, loads: &mut WaterLoads| -> (Duration, usize, usize) {
+        let mut s = DynamicSettings::new(0.1, 10.0);
+        s.alpha = 0.3;
+        s.output_interval = Some(10.0);
+        let mut solver = DynamicSolver::new(&built.model, s, initial, loads).expect("solver");
+        let t = Instant::now();
+        let mut steps = 0;
+        let mut iters = 0;
+        while !solver.is_finished() {
+            let r = solver.step(loads).expect("step");
+            steps += 1;
+            iters += r.iterations;
+        }
+        (t.elapsed(), steps, iters)
+    };
+    let (d, n, it) = run(Some(&stat.state), &mut loads);
+    eprintln!(
+        "from equilibrium: {n} steps, {:.2} ms/step, {:.2} Newton iterations/step",
+        1e3 * d.as_secs_f64() / n as f64,
+        it as f64 / n as f64
+    );
+    let mut g = c.benchmark_group("reference_cage_10s_dt0.1");
+    g.sample_size(10);
+    g.measurement_time(Duration::from_secs(20));
+    g.bench_function("from_static_equilibrium_per_step", |b| {
+        b.iter_custom(|k| {
+            let mut total = Duration::ZERO;
+            for _ in 0..k {
+                let (d, n, _) = run(Some(&stat.state), &mut loads);
+                total += d / n as u32;
+            }
+            total
+        })
+    });
+    // Dynamics from rest: the current ramps over its ramp time.
+    let sea_ramped = aqua_env::Sea::clone(&built.sea).with_current_ramp(true);
+    let assembly =
+        LoadAssembly::new(sea_ramped, built.model.n_nodes(), built.elements.clone()).unwrap();
+    let mut ramped = WaterLoads::new(assembly, Phase::Dynamic, &built.elements);
+    let (d, n, it) = run(None, &mut ramped);
+    eprintln!(
+        "from rest: {n} steps, {:.2} ms/step, {:.2} Newton iterations/step",
+        1e3 * d.as_secs_f64() / n as f64,
+        it as f64 / n as f64
+    );
+    g.bench_function("from_rest_per_step", |b| {
+        b.iter_custom(|k| {
+            let mut total = Duration::ZERO;
+            for _ in 0..k {
+                let (d, n, _) = run(None, &mut ramped);
+                total += d / n as u32;
+            }
+            total
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
