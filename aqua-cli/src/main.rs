@@ -24,6 +24,8 @@ enum Command {
     Check(commands::check::Args),
     /// Run a scene: statics and/or dynamics, ParaView series, summary.csv, run.json.
     Run(commands::run::Args),
+    /// Compare screen (θ, Cd, Cl) and Morison (Re, Cn, Ct) coefficient models.
+    Coeffs(commands::coeffs::Args),
 }
 
 fn main() -> ExitCode {
@@ -39,6 +41,7 @@ fn main() -> ExitCode {
         Command::Mesh(a) => commands::mesh::run(a),
         Command::Check(a) => commands::check::run(a),
         Command::Run(a) => commands::run::run(a),
+        Command::Coeffs(a) => commands::coeffs::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -284,6 +284,8 @@ impl ScreenModel {
     /// S3/S6 convert it to Re₃ = Re/(1 − Sn)).
     pub fn cd_cl(&self, theta: f64, solidity: f64, re: f64) -> (f64, f64) {
         let (c, s) = (theta.cos().clamp(0.0, 1.0), theta.sin().abs());
+        // cos(π/2) is 6e-17 in floating point: snap so that θ = 90° gives exactly no lift
+        let c = if c < 1e-15 { 0.0 } else { c };
         if let Self::S4 = self {
             let nt = fridman(solidity, re);
             return (

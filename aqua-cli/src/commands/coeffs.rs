@@ -1,0 +1,559 @@
+//! `aqua coeffs`: tables of screen-model drag/lift coefficients against the inflow angle and of
+//! Morison normal/tangential coefficients against the Reynolds number, to compare and choose
+//! models (hydrodynamics spec §1, §4.5, §5.2).
+
+use crate::InputError;
+use aqua_hydro::{MorisonModel, MorisonModelId, ScreenModel, ScreenModelId};
+use serde::Serialize;
+
+/// Flags of `aqua coeffs`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Model id: a screen model (S1 S2 S3 S4 S5 S6 bi2014 const), a Morison model (M1 M2 M3 M4
+    /// M5), or "all" for every model side by side.
+    #[arg(long, default_value = "all")]
+    pub model: String,
+    /// Net solidity Sn, 0 < Sn < 1 (screen models and M5).
+    #[arg(long, default_value_t = 0.2)]
+    pub solidity: f64,
+    /// Inflow angles θ in degrees (0 = flow normal to the net): start:stop:step, or a
+    /// comma-separated list.
+    #[arg(long, default_value = "0:90:15")]
+    pub angles: String,
+    /// Physical twine diameter dw0 [m] for the Reynolds number of S3, S4, S6.
+    #[arg(long, default_value_t = 0.0024)]
+    pub twine_diameter: f64,
+    /// Relative flow speed U [m/s] for the Reynolds number of S3, S4, S6.
+    #[arg(long, default_value_t = 0.5)]
+    pub speed: f64,
+    /// Kinematic viscosity ν [m²/s].
+    #[arg(long, default_value_t = 1.19e-6)]
+    pub viscosity: f64,
+    /// Fixed cylinder drag coefficient for S3/S6 instead of C_cyl(Re).
+    #[arg(long)]
+    pub cyl_cd: Option<f64>,
+    /// Drag coefficient of the screen model "const" (>= 0).
+    #[arg(long)]
+    pub cd: Option<f64>,
+    /// Lift coefficient of the screen model "const".
+    #[arg(long)]
+    pub cl: Option<f64>,
+    /// Reynolds numbers for the Morison tables: comma-separated list, or lo:hi:n for n
+    /// log-spaced values.
+    #[arg(long, default_value = "0.5,1,10,100,1000,1e4,1e5,2.33e5,5e5,1e6,1e7")]
+    pub reynolds: String,
+    /// Print JSON instead of tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// One screen-model row.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ScreenRow {
+    /// θ [deg].
+    pub theta_deg: f64,
+    /// C_D.
+    pub cd: f64,
+    /// C_L.
+    pub cl: f64,
+}
+
+/// One screen model's table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScreenTable {
+    /// Model id.
+    pub model: String,
+    /// Source.
+    pub reference: String,
+    /// Rows by angle.
+    pub rows: Vec<ScreenRow>,
+}
+
+/// Screen-model section of the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScreenReport {
+    /// Sn.
+    pub solidity: f64,
+    /// dw0 [m].
+    pub twine_diameter: f64,
+    /// U [m/s].
+    pub speed: f64,
+    /// ν [m²/s].
+    pub viscosity: f64,
+    /// Re = U·dw0/ν.
+    pub reynolds: f64,
+    /// Fixed C_cyl of S3/S6, if given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cyl_cd: Option<f64>,
+    /// One table per model.
+    pub models: Vec<ScreenTable>,
+}
+
+/// One Morison row.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MorisonRow {
+    /// Reynolds number.
+    pub re: f64,
+    /// C_n.
+    pub cn: f64,
+    /// C_t.
+    pub ct: f64,
+}
+
+/// One Morison model's table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MorisonTable {
+    /// Model id.
+    pub model: String,
+    /// Source.
+    pub reference: String,
+    /// Rows by Reynolds number.
+    pub rows: Vec<MorisonRow>,
+}
+
+/// Morison section of the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MorisonReport {
+    /// Net solidity used by M5 (X = Re·Sn², capped at 100).
+    pub solidity: f64,
+    /// One table per model.
+    pub models: Vec<MorisonTable>,
+}
+
+/// Everything `aqua coeffs` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Screen models, if any were asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub screen: Option<ScreenReport>,
+    /// Morison models, if any were asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub morison: Option<MorisonReport>,
+}
+
+fn input(msg: String) -> anyhow::Error {
+    InputError::new(msg).into()
+}
+
+fn parse_number(flag: &str, s: &str) -> anyhow::Result<f64> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| input(format!("{flag}: \"{s}\" is not a finite number")))
+}
+
+/// Angles in degrees from "a:b:step" or "a,b,c", each in [0, 90].
+pub fn parse_angles(s: &str) -> anyhow::Result<Vec<f64>> {
+    let out = if s.contains(':') {
+        let parts: Vec<&str> = s.split(':').collect();
+        if parts.len() != 3 {
+            return Err(input(format!(
+                "--angles = \"{s}\": use start:stop:step in degrees (e.g. 0:90:15) or a list 0,30,60"
+            )));
+        }
+        let (a, b, st) = (
+            parse_number("--angles", parts[0])?,
+            parse_number("--angles", parts[1])?,
+            parse_number("--angles", parts[2])?,
+        );
+        if !(st > 0.0) || b < a {
+            return Err(input(format!(
+                "--angles = \"{s}\": need start <= stop and step > 0 (e.g. 0:90:15)"
+            )));
+        }
+        let n = ((b - a) / st + 1e-9).floor() as usize;
+        if n > 100_000 {
+            return Err(input(format!(
+                "--angles = \"{s}\": too many angles (step too small)"
+            )));
+        }
+        (0..=n).map(|i| a + i as f64 * st).collect::<Vec<_>>()
+    } else {
+        s.split(',')
+            .map(|p| parse_number("--angles", p))
+            .collect::<anyhow::Result<Vec<_>>>()?
+    };
+    if let Some(bad) = out.iter().find(|a| !(0.0..=90.0).contains(*a)) {
+        return Err(input(format!(
+            "--angles: {bad} deg is outside 0-90 (θ = 0 is flow normal to the net, 90 flow in its plane)"
+        )));
+    }
+    Ok(out)
+}
+
+/// Reynolds numbers from a list or "lo:hi:n" (log-spaced), each > 0.
+pub fn parse_reynolds(s: &str) -> anyhow::Result<Vec<f64>> {
+    let out = if s.contains(':') {
+        let parts: Vec<&str> = s.split(':').collect();
+        if parts.len() != 3 {
+            return Err(input(format!(
+                "--reynolds = \"{s}\": use lo:hi:n (n log-spaced values) or a list 1,10,100"
+            )));
+        }
+        let (lo, hi) = (
+            parse_number("--reynolds", parts[0])?,
+            parse_number("--reynolds", parts[1])?,
+        );
+        let n: usize = parts[2].trim().parse().map_err(|_| {
+            input(format!(
+                "--reynolds = \"{s}\": n must be a whole number >= 2"
+            ))
+        })?;
+        if !(lo > 0.0 && hi > lo) || !(2..=100_000).contains(&n) {
+            return Err(input(format!(
+                "--reynolds = \"{s}\": need 0 < lo < hi and 2 <= n <= 100000"
+            )));
+        }
+        let (a, b) = (lo.log10(), hi.log10());
+        (0..n)
+            .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
+            .collect()
+    } else {
+        s.split(',')
+            .map(|p| parse_number("--reynolds", p))
+            .collect::<anyhow::Result<Vec<_>>>()?
+    };
+    if let Some(bad) = out.iter().find(|r| !(**r > 0.0)) {
+        return Err(input(format!("--reynolds: {bad} must be > 0")));
+    }
+    Ok(out)
+}
+
+/// Which models a `--model` value selects.
+fn select(model: &str, has_cd: bool) -> anyhow::Result<(Vec<ScreenModelId>, Vec<MorisonModelId>)> {
+    if model == "all" {
+        let screens = ScreenModelId::ALL
+            .into_iter()
+            .filter(|id| *id != ScreenModelId::Const || has_cd)
+            .collect();
+        let morisons = vec![
+            MorisonModelId::M1,
+            MorisonModelId::M2,
+            MorisonModelId::M3,
+            MorisonModelId::M4,
+            MorisonModelId::M5,
+        ];
+        return Ok((screens, morisons));
+    }
+    if let Ok(id) = model.parse::<ScreenModelId>() {
+        return Ok((vec![id], Vec::new()));
+    }
+    match model.parse::<MorisonModelId>() {
+        Ok(id) if !matches!(id, MorisonModelId::None | MorisonModelId::Const) => {
+            Ok((Vec::new(), vec![id]))
+        }
+        _ => Err(input(format!(
+            "--model = \"{model}\": unknown model; valid: all, screen models {}, Morison models M1, M2, M3, M4, M5",
+            ScreenModelId::VALID
+        ))),
+    }
+}
+
+/// Computes the report for the given flags.
+pub fn compute(args: &Args) -> anyhow::Result<Report> {
+    if !(args.solidity > 0.0 && args.solidity < 1.0) {
+        return Err(input(format!(
+            "--solidity = {}: solidity must satisfy 0 < Sn < 1 (typical nets 0.1-0.35)",
+            args.solidity
+        )));
+    }
+    for (flag, v) in [
+        ("--twine-diameter", args.twine_diameter),
+        ("--speed", args.speed),
+        ("--viscosity", args.viscosity),
+    ] {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(input(format!("{flag} = {v}: must be a finite number > 0")));
+        }
+    }
+    let (screens, morisons) = select(&args.model, args.cd.is_some())?;
+    let screen = if screens.is_empty() {
+        None
+    } else {
+        let angles = parse_angles(&args.angles)?;
+        let re = args.speed * args.twine_diameter / args.viscosity;
+        let mut models = Vec::new();
+        for id in screens {
+            let uses_cyl = matches!(id, ScreenModelId::S3 | ScreenModelId::S6);
+            let is_const = id == ScreenModelId::Const;
+            let model = ScreenModel::new(
+                id,
+                if is_const { args.cd } else { None },
+                if is_const { args.cl } else { None },
+                if uses_cyl { args.cyl_cd } else { None },
+            )
+            .map_err(|e| input(format!("--model {id}: {e}")))?;
+            let rows = angles
+                .iter()
+                .map(|&deg| {
+                    let (cd, cl) = model.cd_cl(deg.to_radians(), args.solidity, re);
+                    // + 0.0 turns −0 (e.g. S4 lift at 90°) into 0 for the tables
+                    ScreenRow {
+                        theta_deg: deg,
+                        cd: cd + 0.0,
+                        cl: cl + 0.0,
+                    }
+                })
+                .collect();
+            models.push(ScreenTable {
+                model: id.to_string(),
+                reference: id.reference().to_string(),
+                rows,
+            });
+        }
+        Some(ScreenReport {
+            solidity: args.solidity,
+            twine_diameter: args.twine_diameter,
+            speed: args.speed,
+            viscosity: args.viscosity,
+            reynolds: re,
+            cyl_cd: args.cyl_cd,
+            models,
+        })
+    };
+    let morison = if morisons.is_empty() {
+        None
+    } else {
+        let res = parse_reynolds(&args.reynolds)?;
+        let mut models = Vec::new();
+        for id in morisons {
+            let model = MorisonModel::new(
+                id,
+                None,
+                None,
+                (id == MorisonModelId::M5).then_some(args.solidity),
+            )
+            .map_err(|e| input(format!("--model {id}: {e}")))?;
+            let rows = res
+                .iter()
+                .map(|&re| {
+                    let k = model.coefficients(re);
+                    MorisonRow {
+                        re,
+                        cn: k.cn,
+                        ct: k.ct,
+                    }
+                })
+                .collect();
+            models.push(MorisonTable {
+                model: id.to_string(),
+                reference: id.reference().to_string(),
+                rows,
+            });
+        }
+        Some(MorisonReport {
+            solidity: args.solidity,
+            models,
+        })
+    };
+    Ok(Report { screen, morison })
+}
+
+/// The text tables.
+pub fn render(report: &Report) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    if let Some(sc) = &report.screen {
+        let _ = writeln!(
+            s,
+            "Screen models: Sn = {}, dw0 = {} m, U = {} m/s, nu = {:e} m2/s, Re = U*dw0/nu = {:.1}{}",
+            sc.solidity,
+            sc.twine_diameter,
+            sc.speed,
+            sc.viscosity,
+            sc.reynolds,
+            match sc.cyl_cd {
+                Some(c) => format!(", C_cyl = {c} (S3/S6)"),
+                None => String::new(),
+            }
+        );
+        let _ = writeln!(
+            s,
+            "theta = 0 deg: flow normal to the net; 90 deg: flow in the net plane"
+        );
+        for m in &sc.models {
+            let _ = writeln!(s, "  {:<7} {}", m.model, m.reference);
+        }
+        let _ = write!(s, "{:>9}", "theta_deg");
+        for m in &sc.models {
+            let _ = write!(
+                s,
+                " {:>10} {:>10}",
+                format!("{} Cd", m.model),
+                format!("{} Cl", m.model)
+            );
+        }
+        let _ = writeln!(s);
+        let n = sc.models.first().map_or(0, |m| m.rows.len());
+        for i in 0..n {
+            let _ = write!(s, "{:>9.2}", sc.models[0].rows[i].theta_deg);
+            for m in &sc.models {
+                let r = m.rows[i];
+                let _ = write!(s, " {:>10.6} {:>10.6}", r.cd, r.cl);
+            }
+            let _ = writeln!(s);
+        }
+    }
+    if let Some(mo) = &report.morison {
+        if report.screen.is_some() {
+            let _ = writeln!(s);
+        }
+        let _ = writeln!(
+            s,
+            "Morison models: Cn, Ct vs Re (Re clamped at 1e7; M5 with Sn = {})",
+            mo.solidity
+        );
+        for m in &mo.models {
+            let _ = writeln!(s, "  {:<7} {}", m.model, m.reference);
+        }
+        let _ = write!(s, "{:>10}", "Re");
+        for m in &mo.models {
+            let _ = write!(
+                s,
+                " {:>10} {:>10}",
+                format!("{} Cn", m.model),
+                format!("{} Ct", m.model)
+            );
+        }
+        let _ = writeln!(s);
+        let n = mo.models.first().map_or(0, |m| m.rows.len());
+        for i in 0..n {
+            let _ = write!(s, "{:>10.4e}", mo.models[0].rows[i].re);
+            for m in &mo.models {
+                let r = m.rows[i];
+                let _ = write!(s, " {:>10.6} {:>10.6}", r.cn, r.ct);
+            }
+            let _ = writeln!(s);
+        }
+    }
+    s
+}
+
+/// Run `aqua coeffs`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let report = compute(&args)?;
+    let text = if args.json {
+        serde_json::to_string_pretty(&report)? + "\n"
+    } else {
+        render(&report)
+    };
+    use std::io::Write;
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        // `aqua coeffs | head` closes the pipe early: not an error
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(model: &str) -> Args {
+        Args {
+            model: model.into(),
+            solidity: 0.2,
+            angles: "0:90:30".into(),
+            twine_diameter: 0.0024,
+            speed: 0.5,
+            viscosity: 1.19e-6,
+            cyl_cd: None,
+            cd: None,
+            cl: None,
+            reynolds: "1000,5e5".into(),
+            json: false,
+        }
+    }
+
+    #[test]
+    fn s1_table_matches_spec() {
+        let r = compute(&args("S1")).unwrap();
+        let sc = r.screen.unwrap();
+        assert!(r.morison.is_none());
+        let rows = &sc.models[0].rows;
+        assert_eq!(rows.len(), 4);
+        // spec §8, Sn = 0.2
+        assert!((rows[1].cd - 0.2305255888).abs() < 5e-11);
+        assert!((rows[1].cl - 0.0460725515).abs() < 5e-11);
+        assert!((rows[3].cd - 0.04).abs() < 1e-12);
+    }
+
+    #[test]
+    fn s3_chain_uses_reynolds_from_speed_and_diameter() {
+        let mut a = args("S3");
+        a.angles = "0,45".into();
+        let sc = compute(&a).unwrap().screen.unwrap();
+        assert!((sc.models[0].rows[0].cd - 0.2732876264).abs() < 5e-11);
+        assert!((sc.models[0].rows[1].cl - 0.0552477762).abs() < 5e-11);
+        a.cyl_cd = Some(1.2);
+        let sc = compute(&a).unwrap().screen.unwrap();
+        assert!((sc.models[0].rows[0].cd - 0.3375).abs() < 1e-12);
+    }
+
+    #[test]
+    fn m4_table_matches_spec() {
+        let r = compute(&args("M4")).unwrap();
+        let m = &r.morison.unwrap().models[0];
+        assert!((m.rows[0].cn - 1.2264911064).abs() < 5e-11);
+        assert!((m.rows[0].ct - 0.0810296138).abs() < 5e-11);
+        assert!((m.rows[1].cn - 0.2269684010).abs() < 5e-11);
+    }
+
+    #[test]
+    fn all_puts_models_side_by_side() {
+        let r = compute(&args("all")).unwrap();
+        let sc = r.screen.as_ref().unwrap();
+        assert_eq!(sc.models.len(), 7); // const only with --cd
+        assert_eq!(r.morison.as_ref().unwrap().models.len(), 5);
+        let text = render(&r);
+        assert!(text.contains("bi2014 Cd") && text.contains("M5 Ct"));
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["screen"]["models"][0]["model"], "S1");
+        let mut a = args("all");
+        a.cd = Some(0.3);
+        assert_eq!(compute(&a).unwrap().screen.unwrap().models.len(), 8);
+    }
+
+    #[test]
+    fn bad_input_is_input_error() {
+        let is_input = |r: anyhow::Result<Report>| crate::is_input_error(&r.unwrap_err());
+        assert!(is_input(compute(&args("S7"))));
+        let mut a = args("S1");
+        a.solidity = 1.0;
+        let e = compute(&a).unwrap_err().to_string();
+        assert!(
+            e.contains("--solidity = 1") && e.contains("0 < Sn < 1"),
+            "{e}"
+        );
+        a.solidity = 0.2;
+        a.angles = "0:120:30".into();
+        assert!(is_input(compute(&a)));
+        a.angles = "30:0:10".into();
+        assert!(is_input(compute(&a)));
+        let mut a = args("const");
+        assert!(is_input(compute(&a)));
+        a.cd = Some(-1.0);
+        let e = compute(&a).unwrap_err().to_string();
+        assert!(e.contains("-1") && e.contains(">= 0"), "{e}");
+        let mut a = args("M4");
+        a.reynolds = "0,10".into();
+        assert!(is_input(compute(&a)));
+        a.reynolds = "1:1e7:8".into();
+        assert_eq!(
+            compute(&a).unwrap().morison.unwrap().models[0].rows.len(),
+            8
+        );
+        let mut a = args("S4");
+        a.speed = -1.0;
+        assert!(is_input(compute(&a)));
+    }
+
+    #[test]
+    fn angle_ranges() {
+        assert_eq!(parse_angles("0:90:15").unwrap().len(), 7);
+        assert_eq!(parse_angles("0:90:40").unwrap(), vec![0.0, 40.0, 80.0]);
+        assert_eq!(parse_angles("10,20").unwrap(), vec![10.0, 20.0]);
+        assert!(parse_angles("a:b:c").is_err());
+    }
+}
