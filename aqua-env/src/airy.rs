@@ -186,7 +186,7 @@ impl LinearSum {
         let mut eta = 0.0;
         for i in 0..self.amp.len() {
             let th = self.kx[i] * x + self.ky[i] * y - self.omega[i] * t + self.phase[i];
-            let (s, c) = th.sin_cos();
+            let (s, c) = crate::trig::sin_cos(th);
             cs[i] = (c, s);
             eta += self.amp[i] * c;
         }
@@ -198,7 +198,7 @@ impl LinearSum {
         let mut eta = 0.0;
         for i in 0..self.amp.len() {
             let th = self.kx[i] * x + self.ky[i] * y - self.omega[i] * t + self.phase[i];
-            eta += self.amp[i] * th.cos();
+            eta += self.amp[i] * crate::trig::sin_cos(th).1;
         }
         eta
     }

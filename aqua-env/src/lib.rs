@@ -33,6 +33,7 @@ pub mod spectrum;
 pub mod spreading;
 pub mod stokes;
 pub mod stretching;
+pub mod trig;
 
 pub use airy::{Component, LinearSum};
 pub use config::{BuildOptions, SeaSpec, SeaSummary};
