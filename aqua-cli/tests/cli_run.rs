@@ -216,7 +216,7 @@ fn interrupted_run_leaves_a_consistent_pvd() {
     let dir = scratch("interrupt");
     let scene = chain_scene(&dir, 100_000.0, "");
     let out = dir.join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_aqua"))
+    let child = Command::new(env!("CARGO_BIN_EXE_aqua"))
         .args([
             "run",
             scene.to_str().unwrap(),
