@@ -43,6 +43,16 @@ pub struct DynamicSettings {
     /// Form missing water-load position derivatives by finite differences. Default false
     /// (the provider's ∂f/∂x is used when given; ∂f/∂v is always formed).
     pub fd_position_jacobian: bool,
+    /// Modified Newton (fem.md §13): a numeric factorisation serves up to this many Newton
+    /// iterations, also across steps of equal Δt, while every iteration with a reused
+    /// factorisation reduces ‖r‖ at least 2× (otherwise J is re-formed at the current
+    /// iterate). 1 (default) = full Newton, a factorisation every iteration.
+    #[serde(default = "one")]
+    pub reuse_factor: usize,
+}
+
+fn one() -> usize {
+    1
 }
 
 impl DynamicSettings {
@@ -60,6 +70,7 @@ impl DynamicSettings {
             output_interval: None,
             max_strain: 1.0,
             fd_position_jacobian: false,
+            reuse_factor: 1,
         }
     }
 
@@ -115,6 +126,9 @@ impl DynamicSettings {
         }
         if self.max_iter == 0 {
             return Err(invalid("dynamic max_iter", 0.0, ">= 1"));
+        }
+        if self.reuse_factor == 0 {
+            return Err(invalid("reuse_factor", 0.0, ">= 1 (1 = full Newton)"));
         }
         for (i, r) in self.rayleigh.iter().enumerate() {
             if !(r.is_finite() && *r >= 0.0) {
@@ -203,6 +217,11 @@ pub struct DynamicSolver<'m> {
     last_reaction: Vec<[f64; 3]>,
     clamp: bool,
     mv: Vec<[f64; 3]>,
+    /// The stored numeric factorisation is of the HHT Jacobian for a step of `lu_h`.
+    lu_valid: bool,
+    lu_h: f64,
+    /// Newton iterations the stored factorisation has served.
+    lu_uses: usize,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -277,6 +296,9 @@ impl<'m> DynamicSolver<'m> {
             last_reaction: vec![[0.0; 3]; n],
             clamp: false,
             mv: vec![[0.0; 3]; n],
+            lu_valid: false,
+            lu_h: 0.0,
+            lu_uses: 0,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -502,6 +524,7 @@ impl<'m> DynamicSolver<'m> {
                 Err(fail) => {
                     retries += 1;
                     self.good_steps = 0;
+                    self.lu_valid = false;
                     if !self.clamp && self.sys.cable.iter().any(|c| c.switch < 1.0) {
                         // Retry the same step with T ≥ 0 in the slack elements' geometric term.
                         self.clamp = true;
@@ -560,6 +583,12 @@ impl<'m> DynamicSolver<'m> {
             c: (1.0 - alpha) * gamma / (beta * h),
         };
         let o = self.opts(Some(coef), t1);
+        let o_res = self.opts(None, t1);
+        let reuse = self.st.reuse_factor.max(1);
+        if self.lu_h != h {
+            self.lu_valid = false;
+        }
+        let mut rn_prev = f64::INFINITY;
         let xtol = 1e-6 * model.mean_length;
         let mut hist = Vec::new();
         let mut dx_prev = f64::INFINITY;
@@ -578,9 +607,13 @@ impl<'m> DynamicSolver<'m> {
                 self.a1[i][k] = a;
                 self.v1[i][k] = vn + h * ((1.0 - gamma) * an + gamma * a);
             }
+            // Modified Newton: keep the stored factorisation while it is fresh enough; then
+            // the Jacobian need not be assembled.
+            let mut refactor = !(reuse > 1 && self.lu_valid && self.lu_uses < reuse);
+            let oe = if refactor { &o } else { &o_res };
             if let Err(e) = self
                 .sys
-                .evaluate(model, provider, &self.x1, &self.v1, &self.a1, &o)
+                .evaluate(model, provider, &self.x1, &self.v1, &self.a1, oe)
             {
                 return Err(fail(e.to_string(), &hist));
             }
@@ -621,9 +654,27 @@ impl<'m> DynamicSolver<'m> {
                 strain_check(&self.sys, &hist)?;
                 return Ok((it, hist));
             }
-            if let Err(e) = self.sys.factorize() {
-                return Err(fail(e.to_string(), &hist));
+            if !refactor && it > 0 && rn > 0.5 * rn_prev {
+                // Contraction below 2×: re-form J at this iterate.
+                refactor = true;
+                if let Err(e) = self
+                    .sys
+                    .evaluate(model, provider, &self.x1, &self.v1, &self.a1, &o)
+                {
+                    return Err(fail(e.to_string(), &hist));
+                }
             }
+            if refactor {
+                self.lu_valid = false;
+                if let Err(e) = self.sys.factorize() {
+                    return Err(fail(e.to_string(), &hist));
+                }
+                self.lu_valid = true;
+                self.lu_h = h;
+                self.lu_uses = 0;
+            }
+            self.lu_uses += 1;
+            rn_prev = rn;
             for f in 0..self.r.len() {
                 self.dx[f] = -self.r[f];
             }
