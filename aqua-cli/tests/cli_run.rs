@@ -100,7 +100,11 @@ fn every_example_checks() {
     let (code, out, err) = aqua(&["mesh", "--scene", p.to_str().unwrap(), "--json"]);
     assert_eq!(code, 0, "{err}");
     let m: serde_json::Value = serde_json::from_str(&out).unwrap();
-    assert_eq!(m["nodes"].as_u64(), Some(1057), "the spec's worked SSM case");
+    assert_eq!(
+        m["nodes"].as_u64(),
+        Some(1057),
+        "the spec's worked SSM case"
+    );
     let waves = v["physics"]
         .as_array()
         .unwrap()

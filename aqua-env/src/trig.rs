@@ -8,7 +8,7 @@
 //! exact value for |x| ≤ 1e6 rad (tested against `f64::sin_cos`); larger arguments fall back
 //! to `f64::sin_cos`.
 
-const INV_PIO2: f64 = 6.366_197_723_675_813_4e-1;
+const INV_PIO2: f64 = std::f64::consts::FRAC_2_PI;
 /// First 33 bits of π/2 (n·PIO2_HI is exact for |n| < 2^20).
 const PIO2_HI: f64 = 1.570_796_326_734_125_6;
 /// π/2 − PIO2_HI.
@@ -21,6 +21,7 @@ const S4: f64 = 2.755_731_370_707_006_8e-6;
 const S5: f64 = -2.505_076_025_340_686_3e-8;
 const S6: f64 = 1.589_690_995_211_55e-10;
 
+#[allow(clippy::excessive_precision)]
 const C1: f64 = 4.166_666_666_666_660_2e-2;
 const C2: f64 = -1.388_888_888_887_411e-3;
 const C3: f64 = 2.480_158_728_947_673e-5;
