@@ -222,6 +222,8 @@ pub struct DynamicSolver<'m> {
     lu_h: f64,
     /// Newton iterations the stored factorisation has served.
     lu_uses: usize,
+    /// Numeric factorisations of the current attempt.
+    attempt_factorisations: usize,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -299,6 +301,7 @@ impl<'m> DynamicSolver<'m> {
             lu_valid: false,
             lu_h: 0.0,
             lu_uses: 0,
+            attempt_factorisations: 0,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -493,7 +496,8 @@ impl<'m> DynamicSolver<'m> {
                     self.state.t = if landed { target } else { t + h };
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
-                    if iters <= 4 {
+                    // Easy step: few factorisations (= iterations with full Newton).
+                    if self.attempt_factorisations <= 4 {
                         self.good_steps += 1;
                         if self.good_steps >= 4 && self.dt_cur < self.st.dt {
                             self.dt_cur = (2.0 * self.dt_cur).min(self.st.dt);
@@ -589,6 +593,7 @@ impl<'m> DynamicSolver<'m> {
             self.lu_valid = false;
         }
         let mut rn_prev = f64::INFINITY;
+        self.attempt_factorisations = 0;
         let xtol = 1e-6 * model.mean_length;
         let mut hist = Vec::new();
         let mut dx_prev = f64::INFINITY;
@@ -672,6 +677,7 @@ impl<'m> DynamicSolver<'m> {
                 self.lu_valid = true;
                 self.lu_h = h;
                 self.lu_uses = 0;
+                self.attempt_factorisations += 1;
             }
             self.lu_uses += 1;
             rn_prev = rn;
