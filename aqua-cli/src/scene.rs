@@ -403,6 +403,14 @@ pub struct DynamicSpec {
     /// Largest strain before a step is rejected.
     #[serde(default = "d_max_strain")]
     pub max_strain: f64,
+    /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
+    /// halves the residual (1 = full Newton).
+    #[serde(default = "d_reuse")]
+    pub reuse_factor: usize,
+}
+
+fn d_reuse() -> usize {
+    1
 }
 
 fn d_t_end() -> f64 {
@@ -438,6 +446,7 @@ impl Default for DynamicSpec {
             cfl: d_cfl(),
             output_interval: None,
             max_strain: d_max_strain(),
+            reuse_factor: d_reuse(),
         }
     }
 }

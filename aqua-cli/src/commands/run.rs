@@ -112,6 +112,11 @@ pub fn timing(scene: &Scene) -> Result<(f64, f64, f64), InputError> {
             d.t_end
         )));
     }
+    if d.reuse_factor == 0 {
+        return Err(InputError::new(format!(
+            "{file}: analysis.dynamic.reuse_factor = 0: an integer >= 1 (1 = full Newton)"
+        )));
+    }
     let dt = d.dt.unwrap_or(0.1);
     if !(dt > 0.0 && dt <= d.t_end) {
         return Err(InputError::new(format!(
@@ -405,6 +410,7 @@ fn solve(
             s.rayleigh = d.rayleigh;
             s.output_interval = Some(output_interval);
             s.max_strain = d.max_strain;
+            s.reuse_factor = d.reuse_factor;
             let mut solver = DynamicSolver::new(model, s, initial.as_ref(), &mut loads)
                 .context("starting the dynamic solver")?;
             if initial.is_none() {
