@@ -14,7 +14,7 @@ use anyhow::Context;
 use aqua_env::Phase;
 use aqua_fem::{
     DynamicSettings, DynamicSolver, ExplicitScheme, ExplicitSettings, ExplicitSolver, MassMatrix,
-    Outputs, State, StaticSettings, solve_static,
+    Outputs, State, StaticSettings, StepReport, solve_static,
 };
 use aqua_hydro::assembly::{ElementOutput, LoadAssembly};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -229,6 +229,13 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let mut outw = RunOutput::create(&a.out, &scene.name, &built)?;
+    if built.sea.has_waves() && kind != AnalysisKind::Static {
+        // The component table makes the run reproducible exactly (environment.md §1).
+        crate::commands::waves::write_component_table(
+            &built.sea,
+            &a.out.join("wave_components.csv"),
+        )?;
+    }
     let mut record = Record {
         wall: 0.0,
         dyn_wall: 0.0,
@@ -413,45 +420,15 @@ fn solve(
             s.reuse_factor = d.reuse_factor;
             let mut solver = DynamicSolver::new(model, s, initial.as_ref(), &mut loads)
                 .context("starting the dynamic solver")?;
-            if initial.is_none() {
-                write_step(
-                    outw,
-                    built,
-                    &loads.assembly,
-                    solver.state(),
-                    solver.outputs(),
-                    0,
-                    0.0,
-                )?;
-            }
-            loop {
-                if solver.is_finished() {
-                    break Ok(());
-                }
-                if interrupted() {
-                    record.ending = Ending::Interrupted;
-                    break Ok(());
-                }
-                let report = match solver.step(&mut loads) {
-                    Ok(r) => r,
-                    Err(e) => break Err(anyhow::Error::new(e)),
-                };
-                record.steps += 1;
-                record.iterations += report.iterations;
-                bar.set_position((report.t * 1000.0).round() as u64);
-                bar.set_message(format!("{:.2} s, {} steps", report.t, record.steps));
-                if report.output_time {
-                    write_step(
-                        outw,
-                        built,
-                        &loads.assembly,
-                        solver.state(),
-                        solver.outputs(),
-                        report.iterations,
-                        report.dt,
-                    )?;
-                }
-            }
+            drive(
+                &mut solver,
+                &mut loads,
+                outw,
+                built,
+                record,
+                &bar,
+                initial.is_none(),
+            )
         }
         Scheme::SemiImplicitEuler | Scheme::Rk4 => {
             let mut s = ExplicitSettings::new(t_end);
@@ -469,48 +446,103 @@ fn solve(
             for w in solver.warnings() {
                 eprintln!("warning: {w}");
             }
-            if initial.is_none() {
-                write_step(
-                    outw,
-                    built,
-                    &loads.assembly,
-                    solver.state(),
-                    solver.outputs(),
-                    0,
-                    0.0,
-                )?;
-            }
-            loop {
-                if solver.is_finished() {
-                    break Ok(());
-                }
-                if interrupted() {
-                    record.ending = Ending::Interrupted;
-                    break Ok(());
-                }
-                let report = match solver.step(&mut loads) {
-                    Ok(r) => r,
-                    Err(e) => break Err(anyhow::Error::new(e)),
-                };
-                record.steps += 1;
-                record.iterations += report.iterations;
-                bar.set_position((report.t * 1000.0).round() as u64);
-                bar.set_message(format!("{:.2} s, {} steps", report.t, record.steps));
-                if report.output_time {
-                    write_step(
-                        outw,
-                        built,
-                        &loads.assembly,
-                        solver.state(),
-                        solver.outputs(),
-                        report.iterations,
-                        report.dt,
-                    )?;
-                }
-            }
+            drive(
+                &mut solver,
+                &mut loads,
+                outw,
+                built,
+                record,
+                &bar,
+                initial.is_none(),
+            )
         }
     };
     record.dyn_wall = t_dyn.elapsed().as_secs_f64();
     bar.finish_and_clear();
     result.context("dynamic run failed")
+}
+
+/// What the run loop needs of a time integrator (HHT-α or explicit).
+trait Stepper {
+    fn is_finished(&self) -> bool;
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport>;
+    fn state(&self) -> &State;
+    fn outputs(&self) -> &Outputs;
+}
+
+impl Stepper for DynamicSolver<'_> {
+    fn is_finished(&self) -> bool {
+        DynamicSolver::is_finished(self)
+    }
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport> {
+        DynamicSolver::step(self, loads)
+    }
+    fn state(&self) -> &State {
+        DynamicSolver::state(self)
+    }
+    fn outputs(&self) -> &Outputs {
+        DynamicSolver::outputs(self)
+    }
+}
+
+impl Stepper for ExplicitSolver<'_> {
+    fn is_finished(&self) -> bool {
+        ExplicitSolver::is_finished(self)
+    }
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport> {
+        ExplicitSolver::step(self, loads)
+    }
+    fn state(&self) -> &State {
+        ExplicitSolver::state(self)
+    }
+    fn outputs(&self) -> &Outputs {
+        ExplicitSolver::outputs(self)
+    }
+}
+
+/// Steps to the end (or a stop request), writing every output step. A failed step ends the
+/// loop with its error; the steps already written stay.
+fn drive<S: Stepper>(
+    solver: &mut S,
+    loads: &mut WaterLoads,
+    outw: &mut RunOutput,
+    built: &Built,
+    record: &mut Record,
+    bar: &ProgressBar,
+    write_initial: bool,
+) -> anyhow::Result<()> {
+    if write_initial {
+        write_step(
+            outw,
+            built,
+            &loads.assembly,
+            solver.state(),
+            solver.outputs(),
+            0,
+            0.0,
+        )?;
+    }
+    while !solver.is_finished() {
+        if interrupted() {
+            record.ending = Ending::Interrupted;
+            return Ok(());
+        }
+        let report = solver.step(loads)?;
+        record.steps += 1;
+        record.iterations += report.iterations;
+        bar.set_position((report.t * 1000.0).round() as u64);
+        bar.set_message(format!("{:.2} s, {} steps", report.t, record.steps));
+        if report.output_time {
+            write_step(
+                outw,
+                built,
+                &loads.assembly,
+                solver.state(),
+                solver.outputs(),
+                report.iterations,
+                report.dt,
+            )?;
+        }
+    }
+    Ok(())
 }

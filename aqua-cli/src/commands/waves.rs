@@ -439,7 +439,8 @@ pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
     o
 }
 
-fn write_component_table(sea: &Sea, path: &std::path::Path) -> anyhow::Result<()> {
+/// Writes the wave component table (i, ω, T, k, a, β, φ) that reproduces a sea exactly.
+pub fn write_component_table(sea: &Sea, path: &std::path::Path) -> anyhow::Result<()> {
     let mut f = std::io::BufWriter::new(
         std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
     );
