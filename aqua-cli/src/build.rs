@@ -435,9 +435,11 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
         }
     }
     for (e, l) in mesh.lines.iter().enumerate() {
-        let (gid, section) = fem_group[l.group]
-            .as_ref()
-            .expect("line groups have sections");
+        let (gid, section) = fem_group[l.group].as_ref().ok_or_else(|| {
+            input(format!(
+                "{file}: element {e} belongs to a group without a section"
+            ))
+        })?;
         let len = match l.rest_length {
             Some(l0) => UnstretchedLength::Given(l0),
             None => UnstretchedLength::AsBuilt {
@@ -628,9 +630,11 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
     for (e, l) in mesh.lines.iter().enumerate() {
         let g = &mesh.groups[l.group];
         let obj = &mesh.objects[l.object as usize];
-        let (_, section) = fem_group[l.group]
-            .as_ref()
-            .expect("line groups have sections");
+        let (_, section) = fem_group[l.group].as_ref().ok_or_else(|| {
+            input(format!(
+                "{file}: element {e} belongs to a group without a section"
+            ))
+        })?;
         let twine = g.role == Role::NetTwines;
         is_twine[e] = twine;
         let mut h = group_spec(scene, &obj.name, &g.name)
