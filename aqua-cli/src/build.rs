@@ -119,6 +119,39 @@ fn group_names_hint(mesh: &Mesh) -> String {
     names.join(", ")
 }
 
+/// A line end that nothing holds: not fixed or prescribed in any DOF, and no element or panel
+/// of another object uses it. Statics would let such a line fall and lie on the seabed with a
+/// zero end force, which is almost never what the user meant.
+fn free_line_end(
+    mesh: &Mesh,
+    model: &aqua_fem::Model,
+    object: usize,
+    line: &str,
+    end: &str,
+    node: usize,
+) -> Option<String> {
+    if (0..3).any(|k| model.is_constrained(node, k)) {
+        return None;
+    }
+    let other_line = mesh
+        .lines
+        .iter()
+        .any(|e| e.object as usize != object && e.nodes.contains(&node));
+    let other_panel = mesh
+        .panels
+        .iter()
+        .any(|p| p.nodes.as_slice().contains(&node));
+    if other_line || other_panel {
+        return None;
+    }
+    Some(format!(
+        "line '{line}': its {end} is neither fixed, prescribed nor attached to another object; \
+         the line will fall to the seabed with a zero {end} force. Add \"{end}\" to the line's \
+         `fixed`, give it a [[prescribed]] motion, or set `fairlead` to a node such as \
+         \"cage0/top_ring[0]\""
+    ))
+}
+
 /// Merges the last node of the mesh into `target` (a line's fairlead onto an existing node).
 fn weld_last_node(mesh: &mut Mesh, target: usize) {
     let dup = mesh.nodes.len() - 1;
@@ -720,6 +753,11 @@ pub fn build(scene: &Scene) -> Result<Built, InputError> {
             elems.first(),
             elems.last(),
         ) {
+            for (end, nd) in [("anchor", a), ("fairlead", f)] {
+                if let Some(msg) = free_line_end(&mesh, &model, oi, &obj.name, end, nd) {
+                    notices.push(msg);
+                }
+            }
             line_ends.push(LineEnds {
                 name: obj.name.clone(),
                 anchor: a,

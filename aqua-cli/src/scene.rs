@@ -284,40 +284,41 @@ pub struct StaticSpec {
     /// Relative force-residual tolerance.
     #[serde(default = "d_static_tol")]
     pub tol: f64,
-    /// Newton iterations per increment.
+    /// Iteration budget per load level.
     #[serde(default = "d_static_iter")]
     pub max_iter: usize,
-    /// Initial number of load increments.
+    /// Initial number of load levels (1 = full load at once).
     #[serde(default = "d_load_steps")]
     pub load_steps: usize,
     /// Smallest load increment.
     #[serde(default = "d_min_load")]
     pub min_load_step: f64,
-    /// Pseudo-viscous stabilisation ε_s (0 disables).
+    /// Initial Ψtc regularisation δ0 (0 = plain Newton).
     #[serde(default = "d_stab")]
     pub stabilisation: f64,
-    /// Backtracking line search.
-    #[serde(default = "d_true")]
+    /// Backtracking line search (off by default).
+    #[serde(default = "d_line_search")]
     pub line_search: bool,
 }
 
+// Defaults are aqua-fem's (one owner).
 fn d_static_tol() -> f64 {
-    1e-6
+    aqua_fem::StaticSettings::default().tol
 }
 fn d_static_iter() -> usize {
-    30
+    aqua_fem::StaticSettings::default().max_iter
 }
 fn d_load_steps() -> usize {
-    4
+    aqua_fem::StaticSettings::default().load_steps
 }
 fn d_min_load() -> f64 {
-    1e-4
+    aqua_fem::StaticSettings::default().min_load_step
 }
 fn d_stab() -> f64 {
-    1e-3
+    aqua_fem::StaticSettings::default().stabilisation
 }
-fn d_true() -> bool {
-    true
+fn d_line_search() -> bool {
+    aqua_fem::StaticSettings::default().line_search
 }
 
 impl Default for StaticSpec {
@@ -328,7 +329,7 @@ impl Default for StaticSpec {
             load_steps: d_load_steps(),
             min_load_step: d_min_load(),
             stabilisation: d_stab(),
-            line_search: true,
+            line_search: d_line_search(),
         }
     }
 }

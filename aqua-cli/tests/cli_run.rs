@@ -346,3 +346,86 @@ fn outputs_are_read_back_by_an_independent_vtk_reader() {
         .unwrap();
     assert!(status.success(), "meshio read-back failed");
 }
+
+#[test]
+fn interrupt_during_statics_keeps_the_best_state_as_step_0() {
+    // The reference cage's static solve takes thousands of Newton iterations; Ctrl-C during
+    // it must stop the solve promptly, write the last accepted state as step 0 and exit 130.
+    let dir = scratch("interrupt-statics");
+    let out = dir.join("out");
+    let scene = root().join("examples/reference-cage.toml");
+    let child = Command::new(env!("CARGO_BIN_EXE_aqua"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_secs(3));
+    let pvd = out.join("reference-cage.pvd");
+    assert!(
+        !pvd.exists() || pvd_entries(&pvd).is_empty(),
+        "statics finished before the interrupt; the test needs a longer static solve"
+    );
+    let sent = Instant::now();
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let result = child.wait_with_output().unwrap();
+    let waited = sent.elapsed();
+    assert_eq!(
+        result.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    // Generous bound (debug build, loaded CI): the solver polls between Newton iterations.
+    assert!(waited < Duration::from_secs(20), "stopped after {waited:?}");
+    let entries = assert_consistent(&pvd);
+    assert_eq!(entries.len(), 1, "the static state is step 0");
+    assert_eq!(entries[0].0, 0.0);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    assert_eq!(json["status"], "interrupted");
+    assert_eq!(json["output_steps"].as_u64(), Some(1));
+    let hist = json["static_residual_history"].as_array().unwrap();
+    assert!(!hist.is_empty());
+    assert!(hist.iter().all(|v| v.as_f64().is_some_and(f64::is_finite)));
+}
+
+#[test]
+fn check_warns_about_a_line_end_held_by_nothing() {
+    let dir = scratch("free-line-end");
+    let scene = dir.join("free.toml");
+    std::fs::write(
+        &scene,
+        "name = \"free\"\n[sea]\ndepth = 50.0\n[[line]]\nname = \"chain\"\n\
+         anchor = [0.0, 0.0, -50.0]\nfairlead = [100.0, 0.0, -5.0]\nlength = 120.0\n\
+         segments = 20\ndiameter = 0.1\nmass_per_length = 100.0\nea = 5e8\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = aqua(&["check", scene.to_str().unwrap()]);
+    let all = format!("{stdout}{stderr}");
+    assert_eq!(code, 0, "{all}");
+    assert!(
+        all.contains("line 'chain': its fairlead is neither fixed, prescribed nor attached"),
+        "{all}"
+    );
+    assert!(!all.contains("its anchor is neither"), "{all}");
+    // Fixing the fairlead removes the warning.
+    let fixed = std::fs::read_to_string(&scene).unwrap().replace(
+        "ea = 5e8\n",
+        "ea = 5e8\nfixed = [\"anchor\", \"fairlead\"]\n",
+    );
+    std::fs::write(&scene, fixed).unwrap();
+    let (code, stdout, stderr) = aqua(&["check", scene.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(!format!("{stdout}{stderr}").contains("neither fixed"));
+}

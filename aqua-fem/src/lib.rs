@@ -87,4 +87,7 @@ pub use model::{
 };
 pub use motion::{Motion, TableSpline, smooth_ramp};
 pub use state::{Outputs, State};
-pub use statics::{StaticReport, StaticSettings, StaticSolution, solve_static};
+pub use statics::{
+    StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,
+    solve_static_observed,
+};

@@ -14,7 +14,8 @@ use anyhow::Context;
 use aqua_env::Phase;
 use aqua_fem::{
     DynamicSettings, DynamicSolver, ExplicitScheme, ExplicitSettings, ExplicitSolver, MassMatrix,
-    Outputs, State, StaticSettings, StepReport, solve_static,
+    Outputs, State, StaticControl, StaticProgress, StaticSettings, StepReport,
+    solve_static_observed,
 };
 use aqua_hydro::assembly::{ElementOutput, LoadAssembly};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -53,6 +54,8 @@ struct Record {
     steps: usize,
     iterations: usize,
     static_iterations: usize,
+    /// ‖r‖/F_ref of every static Newton iterate.
+    static_residuals: Vec<f64>,
     ending: Ending,
     error: Option<String>,
 }
@@ -242,6 +245,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         steps: 0,
         iterations: 0,
         static_iterations: 0,
+        static_residuals: Vec::new(),
         ending: Ending::Completed,
         error: None,
     };
@@ -289,6 +293,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         "steps": record.steps,
         "newton_iterations": record.iterations,
         "static_newton_iterations": record.static_iterations,
+        "static_residual_history": &record.static_residuals,
         "time_per_step_s": if record.steps > 0 { record.dyn_wall / record.steps as f64 } else { 0.0 },
     });
     outw.write_json(&json)?;
@@ -368,12 +373,36 @@ fn solve(
     let mut loads = WaterLoads::new(assembly, Phase::Static, &built.elements);
     let mut initial: Option<State> = None;
     if kind != AnalysisKind::Dynamic {
-        let stat = solve_static(model, &mut loads, &static_settings(scene))
-            .context("static equilibrium failed")?;
+        let sbar = if quiet {
+            ProgressBar::hidden()
+        } else {
+            let b = ProgressBar::new_spinner();
+            b.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] statics: {msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+            );
+            b
+        };
+        let mut observer = |p: &StaticProgress| {
+            sbar.set_message(format!(
+                "load factor {:.3}, pseudo-step {}, iteration {}, residual {:.2e}·F_ref",
+                p.load_factor, p.pseudo_steps, p.iteration, p.relative_residual
+            ));
+            sbar.tick();
+            if interrupted() {
+                StaticControl::Stop
+            } else {
+                StaticControl::Continue
+            }
+        };
+        let stat = solve_static_observed(model, &mut loads, &static_settings(scene), &mut observer);
+        sbar.finish_and_clear();
+        let stat = stat.context("static equilibrium failed")?;
         for w in &stat.report.warnings {
             eprintln!("warning: {w}");
         }
         record.static_iterations = stat.report.iterations;
+        record.static_residuals = stat.report.residual_history.clone();
         write_step(
             outw,
             built,
@@ -383,6 +412,11 @@ fn solve(
             stat.report.iterations,
             0.0,
         )?;
+        if stat.report.interrupted {
+            // The last accepted (not converged) state is step 0 of the output.
+            record.ending = Ending::Interrupted;
+            return Ok(());
+        }
         initial = Some(stat.state);
     }
     if kind == AnalysisKind::Static {
