@@ -10,7 +10,7 @@ pub const DEFAULT_GRAVITY: f64 = 9.80665;
 /// Default sea-water density [kg/m³].
 pub const DEFAULT_WATER_DENSITY: f64 = 1025.0;
 /// Default compression ratio r_c of cable elements.
-pub const DEFAULT_COMPRESSION_RATIO: f64 = 1e-4;
+pub const DEFAULT_COMPRESSION_RATIO: f64 = 0.0;
 
 /// Flat seabed at z = −depth with a penalty contact law (MoorDyn's `kBot`/`cBot`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -74,7 +74,8 @@ pub struct CableSection {
     pub ea: f64,
     /// Mass per unstretched length μ [kg/m] (> 0).
     pub mass_per_length: f64,
-    /// Compression ratio r_c ∈ [0, 1]: stiffness factor when ε ≤ 0. Default 1e-4.
+    /// Compression ratio r_c ∈ [0, 1]: stiffness factor when ε ≤ 0. Default 0 (tension-only:
+    /// a slack cable carries no force).
     pub compression_ratio: f64,
     /// Axial damping.
     pub axial_damping: AxialDamping,

@@ -381,3 +381,110 @@ fn static_iterations_stay_bounded() {
     assert!(near <= 30, "near-catenary start: {near} iterations");
     assert!(straight <= 70, "straight start: {straight} iterations");
 }
+
+/// Independent solution of the *discrete* elastic catenary the FE model represents: `n`
+/// elements of L0/n between A = (0, 0) and B = (l, h), interior nodes loaded by W = w·L0/n
+/// (lumped weights). Element k carries (H, V0 + k·W), has tension T_k = √(H² + V_k²) and
+/// stretched length L0/n·(1 + T_k/EA); (H, V0) solve Σ_k l_k·(H, V_k)/T_k = (l, h) (2-D Newton
+/// with a finite-difference Jacobian). Returns H, V0 and the node positions (x, z).
+fn discrete_catenary(
+    n: usize,
+    l: f64,
+    h: f64,
+    l0: f64,
+    w: f64,
+    ea: f64,
+) -> (f64, f64, Vec<[f64; 2]>) {
+    let le = l0 / n as f64;
+    let wn = w * le;
+    let walk = |hh: f64, v0: f64| -> Vec<[f64; 2]> {
+        let mut p = vec![[0.0, 0.0]];
+        for k in 0..n {
+            let v = v0 + k as f64 * wn;
+            let t = (hh * hh + v * v).sqrt();
+            let lk = le * (1.0 + t / ea);
+            let last = p[k];
+            p.push([last[0] + lk * hh / t, last[1] + lk * v / t]);
+        }
+        p
+    };
+    let resid = |hh: f64, v0: f64| {
+        let p = walk(hh, v0);
+        [p[n][0] - l, p[n][1] - h]
+    };
+    let (mut hh, mut v0) = (0.5 * w * l0, -0.5 * w * l0);
+    for _ in 0..100 {
+        let r = resid(hh, v0);
+        if r[0].abs().max(r[1].abs()) < 1e-13 * l {
+            break;
+        }
+        let (dh, dv) = (1e-7 * hh.abs().max(1.0), 1e-7 * v0.abs().max(1.0));
+        let rh = resid(hh + dh, v0);
+        let rv = resid(hh, v0 + dv);
+        let j = [
+            [(rh[0] - r[0]) / dh, (rv[0] - r[0]) / dv],
+            [(rh[1] - r[1]) / dh, (rv[1] - r[1]) / dv],
+        ];
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        let sh = (-r[0] * j[1][1] + r[1] * j[0][1]) / det;
+        let sv = (-j[0][0] * r[1] + j[1][0] * r[0]) / det;
+        hh += sh;
+        v0 += sv;
+    }
+    (hh, v0, walk(hh, v0))
+}
+
+#[test]
+fn discrete_catenary_to_round_off_for_any_axial_stiffness() {
+    // The spec's level catenary (l = 100 m, L0 = 105 m, w = 10 N/m) with EA from 1e4 to 1e10 N
+    // at tol = 1e-12: positions within 1e-9 of the span of the independent discrete solution,
+    // and the horizontal tension within 1e-9 or the round-off of EA·Δl/L0, whichever is larger.
+    let (n, l, l0, w) = (20usize, 100.0, 105.0, 10.0);
+    for ea in [1e4, 1e6, 1e8, 1e10] {
+        let (hh, _v0, pts) = discrete_catenary(n, l, 0.0, l0, w, ea);
+        let mut b = ModelBuilder::new(env_air());
+        let g = b
+            .add_group("rope", CableSection::new(ea, w / DEFAULT_GRAVITY))
+            .unwrap();
+        let nodes = add_line(&mut b, [0.0, 0.0, 200.0], [l, 0.0, 200.0], n, l0, g, 15.0);
+        b.fix(nodes[0], Dofs::ALL).unwrap();
+        b.fix(nodes[n], Dofs::ALL).unwrap();
+        let m = b.build().unwrap();
+        let st = StaticSettings {
+            tol: 1e-12,
+            ..Default::default()
+        };
+        let sol =
+            solve_static(&m, &mut NoLoads, &st).unwrap_or_else(|e| panic!("EA = {ea:e}: {e}"));
+        // At EA = 1e10 the residual is at round-off before 1e-12·F_ref: the position is then
+        // determined only to that force over the transverse stiffness H/l_e of the chain.
+        let noise = sol.report.noise_level * sol.report.f_ref;
+        let pos_tol = if ea <= 1e8 {
+            1e-9 * l
+        } else {
+            (1e-9 * l).max(10.0 * noise * (l0 / n as f64) / hh)
+        };
+        for (k, &nd) in nodes.iter().enumerate() {
+            let x = sol.state.x[nd];
+            let dx = (x[0] - pts[k][0])
+                .abs()
+                .max((x[2] - 200.0 - pts[k][1]).abs());
+            assert!(
+                dx <= pos_tol,
+                "EA = {ea:e}, node {k}: {dx:e} m off (bound {pos_tol:e})"
+            );
+        }
+        let h_fe = -sol.outputs.reaction[nodes[0]][0];
+        let roundoff = 64.0 * f64::EPSILON * ea * 2.0 * 200.0 / (l0 / n as f64) / hh;
+        let rel = ((h_fe - hh) / hh).abs();
+        assert!(
+            rel <= 1e-9_f64.max(roundoff),
+            "EA = {ea:e}: H {h_fe} vs {hh} (rel {rel:e}, round-off {roundoff:e})"
+        );
+        assert!(
+            sol.report.iterations <= 200,
+            "EA = {ea:e}: {:?}",
+            sol.report.iterations
+        );
+    }
+}

@@ -93,7 +93,7 @@ impl NetGrouping {
             volume_diameter: self.structural_diameter,
             youngs_modulus: self.youngs_modulus,
             density: self.density,
-            compression_ratio: 1e-4,
+            compression_ratio: crate::mesh::TENSION_ONLY,
             ea: None,
             mass_per_length: None,
             axial_damping: None,
