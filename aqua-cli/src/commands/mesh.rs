@@ -412,8 +412,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = args.out.clone();
     let out = out.as_deref();
     if let Some(path) = &args.scene {
-        let scene = crate::scene::read_scene(path)?;
-        let (mesh, _) = crate::build::build_mesh(&scene)?;
+        let scene = aqua_sim::scene::read_scene(path)?;
+        let (mesh, _) = aqua_sim::build::build_mesh(&scene)?;
         return report(&mesh, out, args.json);
     }
     if let Some(file) = &args.from {

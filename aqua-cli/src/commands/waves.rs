@@ -5,13 +5,13 @@
 //! time series `t,x,y,z,eta,u,v,w,ax,ay,az` at given points and the component table.
 
 use crate::InputError;
-use crate::scene;
 use anyhow::Context;
 use aqua_env::config::{
     CurrentKind, DepthValue, GammaValue, SpectrumShape, SpectrumSpec, WaveKind,
 };
 use aqua_env::record::{significant_height, welch};
-use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Stretching, Waves};
+use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Stretching};
+use aqua_sim::scene;
 use serde::Serialize;
 use std::io::Write;
 use std::path::PathBuf;
@@ -314,7 +314,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         print!("{}", format_summary(&summary, measured.as_ref()));
     }
     if let Some(path) = &a.component_table {
-        write_component_table(&sea, path)?;
+        aqua_sim::files::write_component_table(&sea, path)?;
     }
     if let Some(path) = &a.csv {
         write_series(&sea, &points, a.duration, a.dt, path)?;
@@ -437,30 +437,6 @@ pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
         let _ = writeln!(o, "warning: {w}");
     }
     o
-}
-
-/// Writes the wave component table (i, ω, T, k, a, β, φ) that reproduces a sea exactly.
-pub fn write_component_table(sea: &Sea, path: &std::path::Path) -> anyhow::Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(f, "i,omega,T,k,a,beta_deg,phase_deg")?;
-    if let Waves::Linear { sum, .. } = sea.waves() {
-        for (i, c) in sum.components().iter().enumerate() {
-            writeln!(
-                f,
-                "{i},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-                c.omega,
-                c.period(),
-                c.k,
-                c.amplitude,
-                c.direction.to_degrees(),
-                c.phase.to_degrees()
-            )?;
-        }
-    }
-    f.flush()?;
-    Ok(())
 }
 
 fn write_series(

@@ -17,8 +17,9 @@
 //! [analysis]                     # static / dynamic settings (fem.md §15)
 //! ```
 
-use crate::InputError;
+use crate::error::{Result, SimError};
 use aqua_env::SeaSpec;
+use aqua_fem::{DynamicSettings, ExplicitScheme, ExplicitSettings, MassMatrix, StaticSettings};
 use aqua_hydro::morison::MorisonModelId;
 use aqua_hydro::screen::ScreenModelId;
 use aqua_hydro::wake::WakeSpec;
@@ -29,14 +30,14 @@ use std::path::{Path, PathBuf};
 use toml::{Spanned, Table, Value};
 
 /// Reads a file to a string, with an input error naming it.
-pub fn read_text(path: &Path) -> Result<String, InputError> {
+pub fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(format!("{}: cannot read: {e}", path.display())))
+        .map_err(|e| SimError::input(format!("{}: cannot read: {e}", path.display())))
 }
 
 /// Reads the `[sea]` table of a scene file (a file holding only sea keys at top level is
 /// accepted too, so a bare sea description can be shared between scenes).
-pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
+pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     /// A scene seen only for its `[sea]` table; the other sections are checked elsewhere.
     #[derive(serde::Deserialize)]
     struct SeaOnly {
@@ -46,8 +47,8 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
     }
     let text = read_text(path)?;
     let table: toml::Table =
-        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
-    let err = |e: toml::de::Error| InputError::new(format!("{}: {e}", path.display()));
+        toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
+    let err = |e: toml::de::Error| SimError::input(format!("{}: {e}", path.display()));
     if table.contains_key("sea") {
         toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)
     } else {
@@ -161,6 +162,30 @@ const LINE_HYDRO_KEYS: &[&str] = &[
     "froude_krylov",
     "knot_correction",
 ];
+
+impl LineHydro {
+    /// These keys with those set in `over` replacing them (inline `[[line]]` keys override
+    /// `[[group]]` keys).
+    pub fn merged(mut self, over: &LineHydro) -> LineHydro {
+        let LineHydro {
+            morison,
+            cn,
+            ct,
+            added_mass,
+            added_mass_axial,
+            froude_krylov,
+            knot_correction,
+        } = over;
+        self.morison = morison.or(self.morison);
+        self.cn = cn.or(self.cn);
+        self.ct = ct.or(self.ct);
+        self.added_mass = added_mass.or(self.added_mass);
+        self.added_mass_axial = added_mass_axial.or(self.added_mass_axial);
+        self.froude_krylov = froude_krylov.or(self.froude_krylov);
+        self.knot_correction = knot_correction.or(self.knot_correction);
+        self
+    }
+}
 
 /// `[[group]]`: settings of an element group by name, across objects.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -277,63 +302,39 @@ pub enum AnalysisKind {
     StaticDynamic,
 }
 
-/// `[analysis.static]` (fem.md §9).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StaticSpec {
-    /// Relative force-residual tolerance.
-    #[serde(default = "d_static_tol")]
-    pub tol: f64,
-    /// Newton iterations per increment.
-    #[serde(default = "d_static_iter")]
-    pub max_iter: usize,
-    /// Initial number of load increments.
-    #[serde(default = "d_load_steps")]
-    pub load_steps: usize,
-    /// Smallest load increment.
-    #[serde(default = "d_min_load")]
-    pub min_load_step: f64,
-    /// Pseudo-viscous stabilisation ε_s (0 disables).
-    #[serde(default = "d_stab")]
-    pub stabilisation: f64,
-    /// Backtracking line search.
-    #[serde(default = "d_true")]
-    pub line_search: bool,
+/// `[analysis.static]` (fem.md §9): the keys are fields of aqua-fem's [`StaticSettings`], whose
+/// `Default` gives every default; this adapter only says which fields are scene keys.
+#[derive(Deserialize, Serialize)]
+#[serde(
+    remote = "StaticSettings",
+    default = "StaticSettings::default",
+    deny_unknown_fields
+)]
+struct StaticKeys {
+    tol: f64,
+    max_iter: usize,
+    load_steps: usize,
+    min_load_step: f64,
+    stabilisation: f64,
+    line_search: bool,
+    #[serde(skip)]
+    max_pseudo_steps: usize,
+    #[serde(skip)]
+    time: f64,
+    #[serde(skip)]
+    fd_position_jacobian: bool,
 }
 
-fn d_static_tol() -> f64 {
-    1e-6
-}
-fn d_static_iter() -> usize {
-    30
-}
-fn d_load_steps() -> usize {
-    4
-}
-fn d_min_load() -> f64 {
-    1e-4
-}
-fn d_stab() -> f64 {
-    1e-3
-}
-fn d_true() -> bool {
-    true
+/// `analysis.dynamic.mass_matrix`: aqua-fem's [`MassMatrix`] with snake_case scene names.
+#[derive(Deserialize, Serialize)]
+#[serde(remote = "MassMatrix", rename_all = "snake_case")]
+enum MassMatrixKey {
+    Lumped,
+    Consistent,
 }
 
-impl Default for StaticSpec {
-    fn default() -> Self {
-        Self {
-            tol: d_static_tol(),
-            max_iter: d_static_iter(),
-            load_steps: d_load_steps(),
-            min_load_step: d_min_load(),
-            stabilisation: d_stab(),
-            line_search: true,
-        }
-    }
-}
-
-/// `analysis.dynamic.scheme`.
+/// `analysis.dynamic.scheme`: the implicit HHT-α integrator or one of aqua-fem's
+/// [`ExplicitScheme`]s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Scheme {
@@ -346,107 +347,89 @@ pub enum Scheme {
     Rk4,
 }
 
-/// `analysis.dynamic.mass_matrix`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MassSpec {
-    /// Lumped (default).
-    #[default]
-    Lumped,
-    /// Consistent.
-    Consistent,
+impl Scheme {
+    /// The explicit scheme, or `None` for HHT-α.
+    pub fn explicit(self) -> Option<ExplicitScheme> {
+        match self {
+            Scheme::Hht => None,
+            Scheme::SemiImplicitEuler => Some(ExplicitScheme::SemiImplicitEuler),
+            Scheme::Rk4 => Some(ExplicitScheme::Rk4),
+        }
+    }
 }
 
-/// `[analysis.dynamic]` (fem.md §10–§12).
+/// `[analysis.dynamic]` (fem.md §10–§12): the keys of aqua-fem's [`DynamicSettings`] (HHT-α)
+/// and [`ExplicitSettings`]; defaults not given here are theirs
+/// ([`DynamicSpec::default`]). Resolved into solver settings by [`crate::plan::Plan`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct DynamicSpec {
     /// Integrator.
-    #[serde(default)]
     pub scheme: Scheme,
     /// HHT α ∈ [0, 1/3] (default 0.3); exclusive with rho_inf.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub alpha: Option<f64>,
     /// Spectral radius at infinity ρ∞ ∈ [0.5, 1]; exclusive with alpha.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rho_inf: Option<f64>,
-    /// Time step [s] (HHT: nominal; explicit: upper bound, default the stable estimate).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Time step [s] (HHT: nominal, default [`DEFAULT_DT`]; explicit: upper bound, default
+    /// the stable estimate).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub dt: Option<f64>,
     /// End time [s].
-    #[serde(default = "d_t_end")]
     pub t_end: f64,
     /// Smallest step before the run stops [s] (default dt/1024).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub dt_min: Option<f64>,
     /// Explicit: error instead of reducing a user dt above the stable step.
-    #[serde(default)]
     pub dt_fixed: bool,
     /// Newton tolerance (relative force residual).
-    #[serde(default = "d_dyn_tol")]
     pub tol: f64,
     /// Newton iterations per step.
-    #[serde(default = "d_dyn_iter")]
     pub max_iter: usize,
     /// Lumped or consistent mass.
-    #[serde(default)]
-    pub mass_matrix: MassSpec,
+    #[serde(with = "MassMatrixKey")]
+    pub mass_matrix: MassMatrix,
     /// Rayleigh damping [a_M, a_K].
-    #[serde(default)]
     pub rayleigh: [f64; 2],
     /// Explicit stability factor.
-    #[serde(default = "d_cfl")]
     pub cfl: f64,
-    /// Output interval [s] (default dt; at least every step).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Output interval [s] (default max(dt, t_end/200); at least every step).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub output_interval: Option<f64>,
     /// Largest strain before a step is rejected.
-    #[serde(default = "d_max_strain")]
     pub max_strain: f64,
     /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
     /// halves the residual (1 = full Newton).
-    #[serde(default = "d_reuse")]
     pub reuse_factor: usize,
 }
 
-fn d_reuse() -> usize {
-    1
-}
-
-fn d_t_end() -> f64 {
-    10.0
-}
-fn d_dyn_tol() -> f64 {
-    1e-5
-}
-fn d_dyn_iter() -> usize {
-    15
-}
-fn d_cfl() -> f64 {
-    0.5
-}
-fn d_max_strain() -> f64 {
-    1.0
-}
+/// The nominal HHT step when the scene gives none [s].
+pub const DEFAULT_DT: f64 = 0.1;
+/// The end time when the scene gives none [s].
+pub const DEFAULT_T_END: f64 = 10.0;
 
 impl Default for DynamicSpec {
+    /// aqua-fem's defaults, with the scene's end time.
     fn default() -> Self {
+        let hht = DynamicSettings::new(DEFAULT_DT, DEFAULT_T_END);
+        let explicit = ExplicitSettings::new(DEFAULT_T_END);
         Self {
             scheme: Scheme::Hht,
             alpha: None,
             rho_inf: None,
             dt: None,
-            t_end: d_t_end(),
-            dt_min: None,
-            dt_fixed: false,
-            tol: d_dyn_tol(),
-            max_iter: d_dyn_iter(),
-            mass_matrix: MassSpec::Lumped,
-            rayleigh: [0.0; 2],
-            cfl: d_cfl(),
+            t_end: DEFAULT_T_END,
+            dt_min: hht.dt_min,
+            dt_fixed: explicit.dt_fixed,
+            tol: hht.tol,
+            max_iter: hht.max_iter,
+            mass_matrix: hht.mass_matrix,
+            rayleigh: hht.rayleigh,
+            cfl: explicit.cfl,
             output_interval: None,
-            max_strain: d_max_strain(),
-            reuse_factor: d_reuse(),
+            max_strain: hht.max_strain,
+            reuse_factor: hht.reuse_factor,
         }
     }
 }
@@ -458,9 +441,9 @@ pub struct AnalysisSpec {
     /// What to compute.
     #[serde(default)]
     pub kind: AnalysisKind,
-    /// Statics settings.
-    #[serde(default, rename = "static")]
-    pub statics: StaticSpec,
+    /// Statics settings (aqua-fem's, read directly).
+    #[serde(default, rename = "static", with = "StaticKeys")]
+    pub statics: StaticSettings,
     /// Dynamics settings.
     #[serde(default)]
     pub dynamic: DynamicSpec,
@@ -603,8 +586,8 @@ impl Ctx<'_> {
         index: usize,
         line: usize,
         msg: impl std::fmt::Display,
-    ) -> InputError {
-        InputError::new(format!(
+    ) -> SimError {
+        SimError::input(format!(
             "{}: line {line}: [[{section}]] #{}: {msg}",
             self.path.display(),
             index + 1
@@ -618,7 +601,7 @@ impl Ctx<'_> {
         line: usize,
         prefix: &str,
         table: Table,
-    ) -> Result<T, InputError> {
+    ) -> Result<T> {
         Value::Table(table).try_into::<T>().map_err(|e| {
             let msg = e.to_string();
             let msg = msg.trim();
@@ -637,7 +620,7 @@ impl Ctx<'_> {
         index: usize,
         line: usize,
         table: &mut Table,
-    ) -> Result<NetHydro, InputError> {
+    ) -> Result<NetHydro> {
         let hydro = match table.get_mut("net") {
             Some(Value::Table(net)) => split_keys(net, NET_HYDRO_KEYS),
             Some(other) => {
@@ -655,10 +638,10 @@ impl Ctx<'_> {
 }
 
 /// Reads and type-checks a scene file.
-pub fn read_scene(path: &Path) -> Result<Scene, InputError> {
+pub fn read_scene(path: &Path) -> Result<Scene> {
     let text = read_text(path)?;
     let raw: RawScene =
-        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
+        toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
     let ctx = Ctx { path, text: &text };
     let name = raw.name.clone().unwrap_or_else(|| {
         path.file_stem()
@@ -666,7 +649,7 @@ pub fn read_scene(path: &Path) -> Result<Scene, InputError> {
             .unwrap_or_else(|| "scene".into())
     });
     if name.is_empty() || name.contains(['/', '\\']) {
-        return Err(InputError::new(format!(
+        return Err(SimError::input(format!(
             "{}: name = \"{name}\": a non-empty scene name without path separators",
             path.display()
         )));
@@ -749,11 +732,10 @@ pub fn read_scene(path: &Path) -> Result<Scene, InputError> {
             },
         });
     }
-    let simple =
-        |section: &str, list: &[Spanned<Table>]| -> Result<Vec<(usize, Table)>, InputError> {
-            let _ = section;
-            Ok(list.iter().map(located).collect())
-        };
+    let simple = |section: &str, list: &[Spanned<Table>]| -> Result<Vec<(usize, Table)>> {
+        let _ = section;
+        Ok(list.iter().map(located).collect())
+    };
     let mut point = Vec::new();
     for (i, (line, t)) in simple("point", &raw.point)?.into_iter().enumerate() {
         let value: PointSpec = ctx.typed("point", i, line, "", t)?;
