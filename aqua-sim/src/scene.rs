@@ -639,7 +639,13 @@ impl Ctx<'_> {
 
 /// Reads and type-checks a scene file.
 pub fn read_scene(path: &Path) -> Result<Scene> {
-    let text = read_text(path)?;
+    parse_scene(&read_text(path)?, path)
+}
+
+/// Type-checks the text of a scene; `path` names it in messages, gives the default scene
+/// name and the folder that relative gmsh files are found in.
+pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
+    let text = text.to_string();
     let raw: RawScene =
         toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
     let ctx = Ctx { path, text: &text };
