@@ -58,19 +58,40 @@ pub struct Report {
 
 /// The report of a prepared scene (sets up the water loads, as a run would).
 pub fn report(prep: &Prepared) -> Result<Report> {
-    let scene = &prep.scene;
     let built = &prep.built;
     let (_, load_warnings) = water_loads(prep, Phase::Static)?;
-    let kind = prep.plan.kind;
-    let dynamic = kind != AnalysisKind::Static;
-    let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
-    let sea = &built.sea;
-    let el = &built.elements;
-    let ncomp = match sea.waves() {
+    let ncomp = wave_components(&built.sea);
+    Ok(Report {
+        scene: prep.scene.name.clone(),
+        mesh: built.mesh.summary(),
+        physics: physics(prep, ncomp),
+        cost: cost(prep, ncomp),
+        warnings: built
+            .diagnostics
+            .iter()
+            .chain(&load_warnings)
+            .cloned()
+            .collect(),
+    })
+}
+
+/// Wave components evaluated per point.
+fn wave_components(sea: &aqua_env::Sea) -> usize {
+    match sea.waves() {
         aqua_env::Waves::Linear { sum, .. } => sum.len(),
         aqua_env::Waves::Stokes2 { .. } => 1,
         aqua_env::Waves::None => 0,
-    };
+    }
+}
+
+/// Which physical effects the run computes, and why (not).
+fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
+    let scene = &prep.scene;
+    let built = &prep.built;
+    let kind = prep.plan.kind;
+    let dynamic = kind != AnalysisKind::Static;
+    let sea = &built.sea;
+    let el = &built.elements;
     let wake_on = el
         .wake_groups
         .iter()
@@ -92,7 +113,7 @@ pub fn report(prep: &Prepared) -> Result<Report> {
         .iter()
         .filter(|g| g.section.contact_diameter.is_some())
         .count();
-    let physics = vec![
+    vec![
         Physics {
             name: "current",
             active: sea.has_current(),
@@ -170,7 +191,16 @@ pub fn report(prep: &Prepared) -> Result<Report> {
                 AnalysisKind::StaticDynamic => "statics, then dynamics from equilibrium".into(),
             },
         },
-    ];
+    ]
+}
+
+/// The cost estimate: unknowns, elements, steps and a wall-time guess.
+fn cost(prep: &Prepared, ncomp: usize) -> Cost {
+    let built = &prep.built;
+    let el = &built.elements;
+    let kind = prep.plan.kind;
+    let dynamic = kind != AnalysisKind::Static;
+    let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
     let free = built.model.n_nodes() * 3;
     let steps = if dynamic {
         (t_end / dt).ceil() as usize
@@ -188,7 +218,7 @@ pub fn report(prep: &Prepared) -> Result<Report> {
         } else {
             0.0
         };
-    let cost = Cost {
+    Cost {
         dofs: free,
         cable_elements: built.model.elements().len(),
         load_elements: el.panels.len() + el.lines.len() + el.points.len(),
@@ -200,18 +230,5 @@ pub fn report(prep: &Prepared) -> Result<Report> {
             1
         },
         estimated_seconds: estimated,
-    };
-    let report = Report {
-        scene: scene.name.clone(),
-        mesh: built.mesh.summary(),
-        physics,
-        cost,
-        warnings: built
-            .diagnostics
-            .iter()
-            .chain(&load_warnings)
-            .cloned()
-            .collect(),
-    };
-    Ok(report)
+    }
 }
