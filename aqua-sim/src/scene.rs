@@ -613,6 +613,76 @@ impl Ctx<'_> {
         })
     }
 
+    /// Every table of a section, typed by `f(index, line, table)`, with its line.
+    fn each<T>(
+        &self,
+        list: &[Spanned<Table>],
+        mut f: impl FnMut(usize, usize, Table) -> Result<T>,
+    ) -> Result<Vec<Located<T>>> {
+        list.iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let line = line_of(self.text, s.span().start);
+                f(i, line, s.get_ref().clone()).map(|value| Located { line, value })
+            })
+            .collect()
+    }
+
+    /// A `[[mesh]]`: gmsh files are found relative to the scene file.
+    fn gmsh(&self, i: usize, line: usize, mut t: Table) -> Result<MeshSpec> {
+        let net_hydro = self.net_hydro("mesh", i, line, &mut t)?;
+        let mut params: GmshParams = self.typed("mesh", i, line, "", t)?;
+        if params.file.is_relative()
+            && let Some(dir) = self.path.parent()
+        {
+            params.file = dir.join(&params.file);
+        }
+        Ok(MeshSpec { params, net_hydro })
+    }
+
+    /// A `[[group]]`: its name, Morison keys and section overrides.
+    fn group(&self, i: usize, line: usize, mut t: Table) -> Result<GroupSpec> {
+        let name = match t.remove("name") {
+            Some(Value::String(n)) => n,
+            Some(v) => {
+                return Err(self.err("group", i, line, format!("name = {v}: a group name string")));
+            }
+            None => {
+                return Err(self.err(
+                    "group",
+                    i,
+                    line,
+                    "name is missing: the element group to set (e.g. \"ropes\")",
+                ));
+            }
+        };
+        let hydro = self.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+        let section = self.typed("group", i, line, "", t)?;
+        Ok(GroupSpec {
+            name,
+            section,
+            hydro,
+        })
+    }
+
+    /// A `[[fix]]` with its DOFs checked.
+    fn fix(&self, i: usize, line: usize, t: Table) -> Result<FixSpec> {
+        let value: FixSpec = self.typed("fix", i, line, "", t)?;
+        if let Some(d) = value
+            .dofs
+            .iter()
+            .find(|d| !matches!(d.as_str(), "x" | "y" | "z"))
+        {
+            return Err(self.err(
+                "fix",
+                i,
+                line,
+                format!("dofs contains \"{d}\": valid are \"x\", \"y\", \"z\""),
+            ));
+        }
+        Ok(value)
+    }
+
     /// Splits the hydrodynamic `net.*` keys off an object table.
     fn net_hydro(
         &self,
@@ -645,10 +715,9 @@ pub fn read_scene(path: &Path) -> Result<Scene> {
 /// Type-checks the text of a scene; `path` names it in messages, gives the default scene
 /// name and the folder that relative gmsh files are found in.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
-    let text = text.to_string();
     let raw: RawScene =
-        toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
-    let ctx = Ctx { path, text: &text };
+        toml::from_str(text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
+    let ctx = Ctx { path, text };
     let name = raw.name.clone().unwrap_or_else(|| {
         path.file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -660,129 +729,32 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
             path.display()
         )));
     }
-    let located = |s: &Spanned<Table>| (line_of(&text, s.span().start), s.get_ref().clone());
-
-    let mut cage = Vec::new();
-    for (i, s) in raw.cage.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
-        let params: CageParams = ctx.typed("cage", i, line, "", t)?;
-        cage.push(Located {
-            line,
-            value: CageSpec { params, net_hydro },
-        });
-    }
-    let mut panel = Vec::new();
-    for (i, s) in raw.panel.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
-        let params: PanelParams = ctx.typed("panel", i, line, "", t)?;
-        panel.push(Located {
-            line,
-            value: PanelSpec { params, net_hydro },
-        });
-    }
-    let mut mesh = Vec::new();
-    for (i, s) in raw.mesh.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("mesh", i, line, &mut t)?;
-        let mut params: GmshParams = ctx.typed("mesh", i, line, "", t)?;
-        // gmsh files are found relative to the scene file.
-        if params.file.is_relative()
-            && let Some(dir) = path.parent()
-        {
-            params.file = dir.join(&params.file);
-        }
-        mesh.push(Located {
-            line,
-            value: MeshSpec { params, net_hydro },
-        });
-    }
-    let mut line_specs = Vec::new();
-    for (i, s) in raw.line.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let hydro: LineHydro =
-            ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
-        let params: LineParams = ctx.typed("line", i, line, "", t)?;
-        line_specs.push(Located {
-            line,
-            value: LineSpec { params, hydro },
-        });
-    }
-    let mut group = Vec::new();
-    for (i, s) in raw.group.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let name = match t.remove("name") {
-            Some(Value::String(n)) => n,
-            Some(v) => {
-                return Err(ctx.err("group", i, line, format!("name = {v}: a group name string")));
-            }
-            None => {
-                return Err(ctx.err(
-                    "group",
-                    i,
-                    line,
-                    "name is missing: the element group to set (e.g. \"ropes\")",
-                ));
-            }
-        };
-        let hydro: LineHydro =
-            ctx.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
-        let section: SectionOverride = ctx.typed("group", i, line, "", t)?;
-        group.push(Located {
-            line,
-            value: GroupSpec {
-                name,
-                section,
-                hydro,
-            },
-        });
-    }
-    let simple = |section: &str, list: &[Spanned<Table>]| -> Result<Vec<(usize, Table)>> {
-        let _ = section;
-        Ok(list.iter().map(located).collect())
-    };
-    let mut point = Vec::new();
-    for (i, (line, t)) in simple("point", &raw.point)?.into_iter().enumerate() {
-        let value: PointSpec = ctx.typed("point", i, line, "", t)?;
-        point.push(Located { line, value });
-    }
-    let mut fix = Vec::new();
-    for (i, (line, t)) in simple("fix", &raw.fix)?.into_iter().enumerate() {
-        let value: FixSpec = ctx.typed("fix", i, line, "", t)?;
-        for d in &value.dofs {
-            if !matches!(d.as_str(), "x" | "y" | "z") {
-                return Err(ctx.err(
-                    "fix",
-                    i,
-                    line,
-                    format!("dofs contains \"{d}\": valid are \"x\", \"y\", \"z\""),
-                ));
-            }
-        }
-        fix.push(Located { line, value });
-    }
-    let mut prescribed = Vec::new();
-    for (i, (line, t)) in simple("prescribed", &raw.prescribed)?
-        .into_iter()
-        .enumerate()
-    {
-        let value: PrescribedSpec = ctx.typed("prescribed", i, line, "", t)?;
-        prescribed.push(Located { line, value });
-    }
-    let _ = &ctx.text;
     Ok(Scene {
         name,
         path: path.to_path_buf(),
         sea: raw.sea,
-        cage,
-        panel,
-        line: line_specs,
-        mesh,
-        group,
-        point,
-        fix,
-        prescribed,
+        cage: ctx.each(&raw.cage, |i, line, mut t| {
+            let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
+            let params = ctx.typed("cage", i, line, "", t)?;
+            Ok(CageSpec { params, net_hydro })
+        })?,
+        panel: ctx.each(&raw.panel, |i, line, mut t| {
+            let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
+            let params = ctx.typed("panel", i, line, "", t)?;
+            Ok(PanelSpec { params, net_hydro })
+        })?,
+        line: ctx.each(&raw.line, |i, line, mut t| {
+            let hydro = ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+            let params = ctx.typed("line", i, line, "", t)?;
+            Ok(LineSpec { params, hydro })
+        })?,
+        mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
+        group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
+        point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
+        fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,
+        prescribed: ctx.each(&raw.prescribed, |i, line, t| {
+            ctx.typed("prescribed", i, line, "", t)
+        })?,
         analysis: raw.analysis,
     })
 }
