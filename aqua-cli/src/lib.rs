@@ -1,13 +1,10 @@
-//! aqua-cli: the scene file, the wiring of the aqua crates, and the outputs of the `aqua` binary.
+//! aqua-cli: the `aqua` binary — argument parsing, printing and progress bars around aqua-sim.
 //!
 //! Every subcommand lives in [`commands`]; `main.rs` only parses the command line, dispatches
-//! and maps errors to exit codes (2 for bad input, see [`InputError`]; 1 for a failed run).
+//! and maps errors to exit codes (2 for bad input, see [`InputError`] and
+//! `aqua_sim::SimError::is_input`; 1 for a failed run).
 
-pub mod build;
 pub mod commands;
-pub mod output;
-pub mod provider;
-pub mod scene;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -47,8 +44,12 @@ impl fmt::Display for InputError {
 
 impl std::error::Error for InputError {}
 
-/// True when the error (or anything in its chain) is an [`InputError`].
+/// True when the error (or anything in its chain) is an [`InputError`] or an input
+/// [`aqua_sim::SimError`].
 pub fn is_input_error(err: &anyhow::Error) -> bool {
-    err.chain()
-        .any(|e| e.downcast_ref::<InputError>().is_some())
+    err.chain().any(|e| {
+        e.downcast_ref::<InputError>().is_some()
+            || e.downcast_ref::<aqua_sim::SimError>()
+                .is_some_and(aqua_sim::SimError::is_input)
+    })
 }

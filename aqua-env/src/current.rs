@@ -199,6 +199,25 @@ impl Current {
         self.profile.is_some() || self.schedule.is_some()
     }
 
+    /// The velocity at height z and time t without the start-up ramp, as the wake models
+    /// see it to find a net's downstream side: a schedule's latest step (held, not blended
+    /// with the next), else the profile [m/s].
+    pub fn unramped_velocity(&self, z: f64, t: f64) -> [f64; 3] {
+        if let Some(s) = &self.schedule {
+            let mut u = s.steps.first().map(|s| s.1).unwrap_or([0.0; 3]);
+            for (tj, uj) in &s.steps {
+                if t >= *tj {
+                    u = *uj;
+                }
+            }
+            return u;
+        }
+        match &self.profile {
+            Some(p) => p.velocity(z),
+            None => [0.0; 3],
+        }
+    }
+
     /// Current velocity and its time derivative at height z, time t, with ramp factor
     /// (R, Ṙ) already chosen by the caller.
     #[inline]

@@ -141,3 +141,41 @@ mod tests {
         assert!((tp - 8.0).abs() < 0.1, "{tp}");
     }
 }
+
+/// Hs and Tp measured from a generated record at x = y = 0.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct MeasuredSea {
+    /// Record length [s].
+    pub record_seconds: f64,
+    /// 4σ_η [m].
+    pub hs: f64,
+    /// Peak period from a Welch spectrum [s].
+    pub tp: f64,
+}
+
+/// Generates η at the origin over `record` seconds after the ramp and measures Hs and Tp.
+pub fn measure_record(
+    sea: &crate::Sea,
+    record: f64,
+    tp_hint: f64,
+    ramp: f64,
+) -> Option<MeasuredSea> {
+    let dt = (tp_hint / 20.0).min(0.5);
+    let n = (record / dt).floor() as usize;
+    if n < 512 {
+        return None;
+    }
+    let eta: Vec<f64> = (0..n)
+        .map(|i| sea.elevation(0.0, 0.0, ramp + i as f64 * dt, crate::Phase::Dynamic))
+        .collect();
+    let mut seg = 64usize;
+    while seg * 2 <= n / 8 {
+        seg *= 2;
+    }
+    let est = welch(&eta, dt, seg)?;
+    Some(MeasuredSea {
+        record_seconds: n as f64 * dt,
+        hs: significant_height(&eta),
+        tp: est.peak_period(),
+    })
+}

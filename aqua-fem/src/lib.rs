@@ -85,7 +85,7 @@ pub use model::{
     DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
     Seabed, Support, UnstretchedLength,
 };
-pub use motion::{Motion, TableSpline, smooth_ramp};
+pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,

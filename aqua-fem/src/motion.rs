@@ -157,6 +157,8 @@ pub enum Motion {
     },
     /// Table of (t, dx, dy, dz), natural cubic spline.
     Table(TableSpline),
+    /// Given from outside step by step (a coupled vessel, CFD or control code).
+    External(ExternalMotion),
 }
 
 impl Motion {
@@ -226,7 +228,7 @@ impl Motion {
                 }
                 Ok(())
             }
-            Motion::Table(_) => Ok(()),
+            Motion::Table(_) | Motion::External(_) => Ok(()),
         }
     }
 
@@ -272,6 +274,7 @@ impl Motion {
                 (d, v, a)
             }
             Motion::Table(s) => s.eval(t),
+            Motion::External(e) => e.eval(t),
         }
     }
 }
@@ -341,5 +344,141 @@ mod tests {
         let (d, v, a) = s.eval(2.2);
         assert!((d[0] - 4.4).abs() < 1e-12 && (v[0] - 2.0).abs() < 1e-12 && a[0].abs() < 1e-12);
         assert!(TableSpline::new(&[[0.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]]).is_err());
+    }
+}
+
+/// One state of an external motion: offset, velocity and (if known) acceleration at time t.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Keyframe {
+    t: f64,
+    d: [f64; 3],
+    v: [f64; 3],
+    a: Option<[f64; 3]>,
+}
+
+/// The last two keyframes of an external motion.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Keyframes {
+    start: Keyframe,
+    end: Keyframe,
+}
+
+/// A prescribed motion given from outside, one step at a time (the coupling interface): the
+/// caller sets where the node is at the end of the coming step ([`ExternalMotion::set_target`])
+/// and the solver reads d(t), v(t), a(t) for any t in the step.
+///
+/// Between the start and the end of the step the offset is the cubic Hermite interpolant of
+/// (d, v) at both ends (so step halving sees a smooth motion); at the end of the step the
+/// given values are returned exactly, the acceleration being the given one or else the
+/// interpolant's. Clones share the same keyframes.
+#[derive(Debug, Clone, Default)]
+pub struct ExternalMotion(std::sync::Arc<std::sync::Mutex<Keyframes>>);
+
+impl PartialEq for ExternalMotion {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl ExternalMotion {
+    /// A motion at rest at zero offset from t = 0 on.
+    pub fn at_rest() -> Self {
+        Self::default()
+    }
+
+    fn frames(&self) -> Keyframes {
+        *self.0.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// The state reached at the end of the current step becomes the start of the next one,
+    /// which ends at time `t` [s] with offset `d` [m], velocity `v` [m/s] and, if known,
+    /// acceleration `a` [m/s²].
+    pub fn set_target(&self, t: f64, d: [f64; 3], v: [f64; 3], a: Option<[f64; 3]>) {
+        let mut k = self.0.lock().unwrap_or_else(|p| p.into_inner());
+        let (d0, v0, a0) = eval_frames(&k, k.end.t);
+        k.start = Keyframe {
+            t: k.end.t,
+            d: d0,
+            v: v0,
+            a: Some(a0),
+        };
+        k.end = Keyframe { t, d, v, a };
+    }
+
+    /// Offset, velocity and acceleration at time t.
+    pub fn eval(&self, t: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        eval_frames(&self.frames(), t)
+    }
+}
+
+fn eval_frames(k: &Keyframes, t: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+    let h = k.end.t - k.start.t;
+    let eps = 1e-9 * h.abs().max(f64::MIN_POSITIVE);
+    if !(h > 0.0) || t >= k.end.t - eps {
+        let a = k.end.a.unwrap_or_else(|| hermite(k, h, 1.0).2);
+        return (k.end.d, k.end.v, a);
+    }
+    if t <= k.start.t + eps {
+        let a = k.start.a.unwrap_or([0.0; 3]);
+        return (k.start.d, k.start.v, a);
+    }
+    hermite(k, h, (t - k.start.t) / h)
+}
+
+/// Cubic Hermite interpolation of (d, v) over a step of length h at s ∈ [0, 1].
+fn hermite(k: &Keyframes, h: f64, s: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+    if !(h > 0.0) {
+        return (k.end.d, k.end.v, [0.0; 3]);
+    }
+    let (s2, s3) = (s * s, s * s * s);
+    let (h00, h10, h01, h11) = (
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        s3 - 2.0 * s2 + s,
+        -2.0 * s3 + 3.0 * s2,
+        s3 - s2,
+    );
+    let (d00, d10, d01, d11) = (
+        6.0 * s2 - 6.0 * s,
+        3.0 * s2 - 4.0 * s + 1.0,
+        -6.0 * s2 + 6.0 * s,
+        3.0 * s2 - 2.0 * s,
+    );
+    let (e00, e10, e01, e11) = (
+        12.0 * s - 6.0,
+        6.0 * s - 4.0,
+        -12.0 * s + 6.0,
+        6.0 * s - 2.0,
+    );
+    let (a, b) = (k.start, k.end);
+    let mut d = [0.0; 3];
+    let mut v = [0.0; 3];
+    let mut acc = [0.0; 3];
+    for c in 0..3 {
+        d[c] = h00 * a.d[c] + h10 * h * a.v[c] + h01 * b.d[c] + h11 * h * b.v[c];
+        v[c] = (d00 * a.d[c] + d01 * b.d[c]) / h + d10 * a.v[c] + d11 * b.v[c];
+        acc[c] = (e00 * a.d[c] + e01 * b.d[c]) / (h * h) + (e10 * a.v[c] + e11 * b.v[c]) / h;
+    }
+    (d, v, acc)
+}
+
+#[cfg(test)]
+mod external_tests {
+    use super::*;
+
+    #[test]
+    fn external_motion_returns_given_values_at_the_end_and_a_cubic_between() {
+        let m = ExternalMotion::at_rest();
+        assert_eq!(m.eval(0.0), ([0.0; 3], [0.0; 3], [0.0; 3]));
+        // d = t³ on [0, 1]: d(1) = 1, v(1) = 3; the Hermite cubic reproduces it exactly.
+        m.set_target(1.0, [1.0, 0.0, 0.0], [3.0, 0.0, 0.0], None);
+        let (d, v, a) = m.eval(0.5);
+        assert!((d[0] - 0.125).abs() < 1e-15 && (v[0] - 0.75).abs() < 1e-15);
+        assert!((a[0] - 3.0).abs() < 1e-12);
+        let (d, v, a) = m.eval(1.0);
+        assert_eq!((d[0], v[0]), (1.0, 3.0));
+        assert!((a[0] - 6.0).abs() < 1e-12);
+        m.set_target(2.0, [2.0, 0.0, 0.0], [0.0; 3], Some([5.0, 0.0, 0.0]));
+        assert_eq!(m.eval(1.0).0[0], 1.0);
+        assert_eq!(m.eval(2.0).2[0], 5.0);
     }
 }

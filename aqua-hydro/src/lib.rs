@@ -25,6 +25,7 @@
 //! output layout.
 
 pub mod assembly;
+pub mod coefficients;
 pub mod cylinder;
 pub mod error;
 pub mod line;

@@ -255,20 +255,7 @@ impl Default for WakeCell {
 
 /// The unramped current [m/s] at point p and time t (for the shadow direction only).
 pub(crate) fn unramped_current(sea: &Sea, p: [f64; 3], t: f64) -> [f64; 3] {
-    let cur = sea.current();
-    if let Some(s) = &cur.schedule {
-        let mut u = s.steps.first().map(|s| s.1).unwrap_or([0.0; 3]);
-        for (tj, uj) in &s.steps {
-            if t >= *tj {
-                u = *uj;
-            }
-        }
-        return u;
-    }
-    match &cur.profile {
-        Some(p_) => p_.velocity(p[2]),
-        None => [0.0; 3],
-    }
+    sea.current().unramped_velocity(p[2], t)
 }
 
 #[cfg(test)]

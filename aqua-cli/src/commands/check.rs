@@ -1,11 +1,7 @@
-//! `aqua check scene.toml`: validates a scene and prints what a run will compute — counts per
-//! group, λ and diameters, which physics are active and which are skipped, and a cost estimate.
+//! `aqua check scene.toml`: validates a scene (the validation of `aqua run`) and prints what a
+//! run will compute — counts per group, λ and diameters, which physics are active and which
+//! are skipped, and a cost estimate ([`aqua_sim::check`]).
 
-use crate::build::build;
-use crate::commands::run::{alpha, timing};
-use crate::scene::{AnalysisKind, Scheme, read_scene};
-use aqua_hydro::MorisonModel;
-use serde::Serialize;
 use std::path::PathBuf;
 
 /// Flags of `aqua check`.
@@ -18,215 +14,16 @@ pub struct Args {
     pub json: bool,
 }
 
-/// One physical effect and whether the scene needs it.
-#[derive(Debug, Serialize)]
-pub struct Physics {
-    /// Name.
-    pub name: &'static str,
-    /// Computed in this run.
-    pub active: bool,
-    /// Why (or why not).
-    pub why: String,
-}
-
-/// The cost estimate.
-#[derive(Debug, Serialize)]
-pub struct Cost {
-    /// Unknowns (free DOFs).
-    pub dofs: usize,
-    /// Cable elements.
-    pub cable_elements: usize,
-    /// Water-load elements (panels, lines, points).
-    pub load_elements: usize,
-    /// Wave components evaluated per point.
-    pub wave_components: usize,
-    /// Dynamic steps at the nominal step.
-    pub steps: usize,
-    /// Output steps.
-    pub output_steps: usize,
-    /// Rough wall-time estimate [s] (measured constants of this code on a 2-core machine).
-    pub estimated_seconds: f64,
-}
-
-/// The whole report.
-#[derive(Debug, Serialize)]
-pub struct Report {
-    /// Scene name.
-    pub scene: String,
-    /// Mesh summary (counts per group, λ, diameters).
-    pub mesh: aqua_mesh::MeshSummary,
-    /// Physics.
-    pub physics: Vec<Physics>,
-    /// Cost.
-    pub cost: Cost,
-    /// Warnings.
-    pub warnings: Vec<String>,
-}
-
 /// Run `aqua check`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let scene = read_scene(&a.scene)?;
-    let built = build(&scene)?;
-    let kind = scene.analysis.kind;
-    let dynamic = kind != AnalysisKind::Static;
-    let (dt, out_int, t_end) = if dynamic {
-        timing(&scene)?
-    } else {
-        (0.0, 0.0, 0.0)
-    };
-    if dynamic && scene.analysis.dynamic.scheme == Scheme::Hht {
-        alpha(&scene)?;
-    }
-    let sea = &built.sea;
-    let el = &built.elements;
-    let ncomp = match sea.waves() {
-        aqua_env::Waves::Linear { sum, .. } => sum.len(),
-        aqua_env::Waves::Stokes2 { .. } => 1,
-        aqua_env::Waves::None => 0,
-    };
-    let wake_on = el
-        .wake_groups
-        .iter()
-        .any(|w| w.wake.model != aqua_hydro::WakeModel::None);
-    let inertia_lines = el
-        .lines
-        .iter()
-        .filter(|l| l.props.added_mass > 0.0 || l.props.froude_krylov)
-        .count();
-    let drag_lines = el
-        .lines
-        .iter()
-        .filter(|l| l.props.model != MorisonModel::None)
-        .count();
-    let seabed = built.model.environment().seabed.is_some();
-    let seabed_groups = built
-        .model
-        .groups()
-        .iter()
-        .filter(|g| g.section.contact_diameter.is_some())
-        .count();
-    let physics = vec![
-        Physics {
-            name: "current",
-            active: sea.has_current(),
-            why: if sea.has_current() {
-                format!(
-                    "{:?} current{}",
-                    scene.sea.current.kind,
-                    if sea.current_ramps() {
-                        ", ramped at the start of dynamics"
-                    } else {
-                        ""
-                    }
-                )
-            } else {
-                "no [sea.current]: skipped".into()
-            },
-        },
-        Physics {
-            name: "waves",
-            active: sea.has_waves() && dynamic,
-            why: match (sea.has_waves(), dynamic) {
-                (true, true) => format!("{ncomp} wave components evaluated per node and step"),
-                (true, false) => "static analysis: waves are not evaluated".into(),
-                (false, _) => "still water: no wave kinematics computed".into(),
-            },
-        },
-        Physics {
-            name: "screen panels",
-            active: !el.panels.is_empty(),
-            why: format!("{} net panels carry drag and lift", el.panels.len()),
-        },
-        Physics {
-            name: "Morison drag on lines",
-            active: drag_lines > 0,
-            why: format!("{drag_lines} of {} line elements", el.lines.len()),
-        },
-        Physics {
-            name: "wake shielding",
-            active: wake_on && sea.has_current(),
-            why: if !wake_on {
-                "no wake model: skipped".into()
-            } else if !sea.has_current() {
-                "wake models reduce the current, and there is none: skipped".into()
-            } else {
-                format!(
-                    "{} cage nets shadow their downstream half",
-                    el.wake_groups.len()
-                )
-            },
-        },
-        Physics {
-            name: "added mass and Froude-Krylov inertia",
-            active: dynamic && inertia_lines > 0,
-            why: if dynamic {
-                format!("{inertia_lines} line elements")
-            } else {
-                "static analysis: no inertia".into()
-            },
-        },
-        Physics {
-            name: "seabed contact",
-            active: seabed && seabed_groups > 0,
-            why: if seabed {
-                format!("{seabed_groups} cable groups may touch the seabed at z = -depth")
-            } else {
-                "no finite water depth: no seabed".into()
-            },
-        },
-        Physics {
-            name: "dynamics",
-            active: dynamic,
-            why: match kind {
-                AnalysisKind::Static => "static analysis only".into(),
-                AnalysisKind::Dynamic => "dynamics from the as-built state".into(),
-                AnalysisKind::StaticDynamic => "statics, then dynamics from equilibrium".into(),
-            },
-        },
-    ];
-    let free = built.model.n_nodes() * 3;
-    let steps = if dynamic {
-        (t_end / dt).ceil() as usize
-    } else {
-        0
-    };
-    // Measured on the reference cage (2 cores): ~3 Newton iterations per step, each costing about
-    // 1.2 µs per cable element + 0.6 µs per load element + 25 ns per wave component and node.
-    let per_iter = 1.2e-6 * built.model.elements().len() as f64
-        + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64
-        + 25e-9 * (ncomp * built.model.n_nodes()) as f64;
-    let estimated = per_iter * 3.0 * steps.max(1) as f64
-        + if kind != AnalysisKind::Dynamic {
-            per_iter * 40.0
-        } else {
-            0.0
-        };
-    let cost = Cost {
-        dofs: free,
-        cable_elements: built.model.elements().len(),
-        load_elements: el.panels.len() + el.lines.len() + el.points.len(),
-        wave_components: ncomp,
-        steps,
-        output_steps: if dynamic {
-            (t_end / out_int).floor() as usize + 1
-        } else {
-            1
-        },
-        estimated_seconds: estimated,
-    };
-    let report = Report {
-        scene: scene.name.clone(),
-        mesh: built.mesh.summary(),
-        physics,
-        cost,
-        warnings: built.notices.clone(),
-    };
+    let prep = aqua_sim::prepare(&a.scene)?;
+    let report = aqua_sim::check::report(&prep)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
     println!("scene {} ({}): valid", report.scene, a.scene.display());
-    crate::commands::mesh::report(&built.mesh, None, false)?;
+    crate::commands::mesh::report(&prep.built.mesh, None, false)?;
     println!("physics:");
     for p in &report.physics {
         println!(
@@ -248,7 +45,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         c.estimated_seconds
     );
     for w in &report.warnings {
-        println!("warning: {w}");
+        println!("{w}");
     }
     Ok(())
 }

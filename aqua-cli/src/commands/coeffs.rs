@@ -3,7 +3,8 @@
 //! models (hydrodynamics spec §1, §4.5, §5.2).
 
 use crate::InputError;
-use aqua_hydro::{MorisonModel, MorisonModelId, ScreenModel, ScreenModelId};
+use aqua_hydro::coefficients::{MorisonTable, ScreenTable, morison_table, screen_table};
+use aqua_hydro::{MorisonModelId, ScreenModelId};
 use serde::Serialize;
 
 /// Flags of `aqua coeffs`.
@@ -47,28 +48,6 @@ pub struct Args {
     pub json: bool,
 }
 
-/// One screen-model row.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ScreenRow {
-    /// θ [deg].
-    pub theta_deg: f64,
-    /// C_D.
-    pub cd: f64,
-    /// C_L.
-    pub cl: f64,
-}
-
-/// One screen model's table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ScreenTable {
-    /// Model id.
-    pub model: String,
-    /// Source.
-    pub reference: String,
-    /// Rows by angle.
-    pub rows: Vec<ScreenRow>,
-}
-
 /// Screen-model section of the report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ScreenReport {
@@ -87,28 +66,6 @@ pub struct ScreenReport {
     pub cyl_cd: Option<f64>,
     /// One table per model.
     pub models: Vec<ScreenTable>,
-}
-
-/// One Morison row.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct MorisonRow {
-    /// Reynolds number.
-    pub re: f64,
-    /// C_n.
-    pub cn: f64,
-    /// C_t.
-    pub ct: f64,
-}
-
-/// One Morison model's table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct MorisonTable {
-    /// Model id.
-    pub model: String,
-    /// Source.
-    pub reference: String,
-    /// Rows by Reynolds number.
-    pub rows: Vec<MorisonRow>,
 }
 
 /// Morison section of the report.
@@ -273,35 +230,20 @@ pub fn compute(args: &Args) -> anyhow::Result<Report> {
     } else {
         let angles = parse_angles(&args.angles)?;
         let re = args.speed * args.twine_diameter / args.viscosity;
-        let mut models = Vec::new();
-        for id in screens {
-            let uses_cyl = matches!(id, ScreenModelId::S3 | ScreenModelId::S6);
-            let is_const = id == ScreenModelId::Const;
-            let model = ScreenModel::new(
-                id,
-                if is_const { args.cd } else { None },
-                if is_const { args.cl } else { None },
-                if uses_cyl { args.cyl_cd } else { None },
-            )
-            .map_err(|e| input(format!("--model {id}: {e}")))?;
-            let rows = angles
-                .iter()
-                .map(|&deg| {
-                    let (cd, cl) = model.cd_cl(deg.to_radians(), args.solidity, re);
-                    // + 0.0 turns −0 (e.g. S4 lift at 90°) into 0 for the tables
-                    ScreenRow {
-                        theta_deg: deg,
-                        cd: cd + 0.0,
-                        cl: cl + 0.0,
-                    }
-                })
-                .collect();
-            models.push(ScreenTable {
-                model: id.to_string(),
-                reference: id.reference().to_string(),
-                rows,
-            });
-        }
+        let models = screens
+            .into_iter()
+            .map(|id| {
+                screen_table(
+                    id,
+                    &angles,
+                    args.solidity,
+                    re,
+                    (args.cd, args.cl),
+                    args.cyl_cd,
+                )
+                .map_err(|e| input(format!("--model {id}: {e}")))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
         Some(ScreenReport {
             solidity: args.solidity,
             twine_diameter: args.twine_diameter,
@@ -316,32 +258,13 @@ pub fn compute(args: &Args) -> anyhow::Result<Report> {
         None
     } else {
         let res = parse_reynolds(&args.reynolds)?;
-        let mut models = Vec::new();
-        for id in morisons {
-            let model = MorisonModel::new(
-                id,
-                None,
-                None,
-                (id == MorisonModelId::M5).then_some(args.solidity),
-            )
-            .map_err(|e| input(format!("--model {id}: {e}")))?;
-            let rows = res
-                .iter()
-                .map(|&re| {
-                    let k = model.coefficients(re);
-                    MorisonRow {
-                        re,
-                        cn: k.cn,
-                        ct: k.ct,
-                    }
-                })
-                .collect();
-            models.push(MorisonTable {
-                model: id.to_string(),
-                reference: id.reference().to_string(),
-                rows,
-            });
-        }
+        let models = morisons
+            .into_iter()
+            .map(|id| {
+                morison_table(id, &res, args.solidity)
+                    .map_err(|e| input(format!("--model {id}: {e}")))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
         Some(MorisonReport {
             solidity: args.solidity,
             models,
@@ -443,117 +366,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // `aqua coeffs | head` closes the pipe early: not an error
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
         _ => Ok(()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn args(model: &str) -> Args {
-        Args {
-            model: model.into(),
-            solidity: 0.2,
-            angles: "0:90:30".into(),
-            twine_diameter: 0.0024,
-            speed: 0.5,
-            viscosity: 1.19e-6,
-            cyl_cd: None,
-            cd: None,
-            cl: None,
-            reynolds: "1000,5e5".into(),
-            json: false,
-        }
-    }
-
-    #[test]
-    fn s1_table_matches_spec() {
-        let r = compute(&args("S1")).unwrap();
-        let sc = r.screen.unwrap();
-        assert!(r.morison.is_none());
-        let rows = &sc.models[0].rows;
-        assert_eq!(rows.len(), 4);
-        // spec §8, Sn = 0.2
-        assert!((rows[1].cd - 0.2305255888).abs() < 5e-11);
-        assert!((rows[1].cl - 0.0460725515).abs() < 5e-11);
-        assert!((rows[3].cd - 0.04).abs() < 1e-12);
-    }
-
-    #[test]
-    fn s3_chain_uses_reynolds_from_speed_and_diameter() {
-        let mut a = args("S3");
-        a.angles = "0,45".into();
-        let sc = compute(&a).unwrap().screen.unwrap();
-        assert!((sc.models[0].rows[0].cd - 0.2732876264).abs() < 5e-11);
-        assert!((sc.models[0].rows[1].cl - 0.0552477762).abs() < 5e-11);
-        a.cyl_cd = Some(1.2);
-        let sc = compute(&a).unwrap().screen.unwrap();
-        assert!((sc.models[0].rows[0].cd - 0.3375).abs() < 1e-12);
-    }
-
-    #[test]
-    fn m4_table_matches_spec() {
-        let r = compute(&args("M4")).unwrap();
-        let m = &r.morison.unwrap().models[0];
-        assert!((m.rows[0].cn - 1.2264911064).abs() < 5e-11);
-        assert!((m.rows[0].ct - 0.0810296138).abs() < 5e-11);
-        assert!((m.rows[1].cn - 0.2269684010).abs() < 5e-11);
-    }
-
-    #[test]
-    fn all_puts_models_side_by_side() {
-        let r = compute(&args("all")).unwrap();
-        let sc = r.screen.as_ref().unwrap();
-        assert_eq!(sc.models.len(), 7); // const only with --cd
-        assert_eq!(r.morison.as_ref().unwrap().models.len(), 5);
-        let text = render(&r);
-        assert!(text.contains("bi2014 Cd") && text.contains("M5 Ct"));
-        let json = serde_json::to_value(&r).unwrap();
-        assert_eq!(json["screen"]["models"][0]["model"], "S1");
-        let mut a = args("all");
-        a.cd = Some(0.3);
-        assert_eq!(compute(&a).unwrap().screen.unwrap().models.len(), 8);
-    }
-
-    #[test]
-    fn bad_input_is_input_error() {
-        let is_input = |r: anyhow::Result<Report>| crate::is_input_error(&r.unwrap_err());
-        assert!(is_input(compute(&args("S7"))));
-        let mut a = args("S1");
-        a.solidity = 1.0;
-        let e = compute(&a).unwrap_err().to_string();
-        assert!(
-            e.contains("--solidity = 1") && e.contains("0 < Sn < 1"),
-            "{e}"
-        );
-        a.solidity = 0.2;
-        a.angles = "0:120:30".into();
-        assert!(is_input(compute(&a)));
-        a.angles = "30:0:10".into();
-        assert!(is_input(compute(&a)));
-        let mut a = args("const");
-        assert!(is_input(compute(&a)));
-        a.cd = Some(-1.0);
-        let e = compute(&a).unwrap_err().to_string();
-        assert!(e.contains("-1") && e.contains(">= 0"), "{e}");
-        let mut a = args("M4");
-        a.reynolds = "0,10".into();
-        assert!(is_input(compute(&a)));
-        a.reynolds = "1:1e7:8".into();
-        assert_eq!(
-            compute(&a).unwrap().morison.unwrap().models[0].rows.len(),
-            8
-        );
-        let mut a = args("S4");
-        a.speed = -1.0;
-        assert!(is_input(compute(&a)));
-    }
-
-    #[test]
-    fn angle_ranges() {
-        assert_eq!(parse_angles("0:90:15").unwrap().len(), 7);
-        assert_eq!(parse_angles("0:90:40").unwrap(), vec![0.0, 40.0, 80.0]);
-        assert_eq!(parse_angles("10,20").unwrap(), vec![10.0, 20.0]);
-        assert!(parse_angles("a:b:c").is_err());
     }
 }

@@ -412,8 +412,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = args.out.clone();
     let out = out.as_deref();
     if let Some(path) = &args.scene {
-        let scene = crate::scene::read_scene(path)?;
-        let (mesh, _) = crate::build::build_mesh(&scene)?;
+        let scene = aqua_sim::scene::read_scene(path)?;
+        let (mesh, _) = aqua_sim::build::build_mesh(&scene)?;
         return report(&mesh, out, args.json);
     }
     if let Some(file) = &args.from {
@@ -527,93 +527,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             };
             let mesh = p.build_with(None, args.seabed_z).map_err(input)?;
             report(&mesh, out, args.json)
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn tmp(name: &str) -> PathBuf {
-        std::env::temp_dir().join(format!("aqua-cli-mesh-{}-{name}", std::process::id()))
-    }
-
-    #[test]
-    fn builders_write_vtu() {
-        let out = tmp("ssm.vtu");
-        let args = Args {
-            kind: Some(Kind::Ssm),
-            circumference: Some(120.0),
-            depth: Some(15.0),
-            out: Some(out.clone()),
-            json: true,
-            ..Default::default()
-        };
-        run(args).unwrap();
-        assert!(out.exists());
-        std::fs::remove_file(&out).unwrap();
-        let panel = Args {
-            kind: Some(Kind::Panel),
-            width: Some(1.0),
-            height: Some(1.0),
-            fixed: vec!["top".into()],
-            ..Default::default()
-        };
-        run(panel).unwrap();
-        let line = Args {
-            kind: Some(Kind::Line),
-            anchor: Some([-100.0, 0.0, -50.0]),
-            fairlead: Some([0.0, 0.0, 0.0]),
-            length: Some(130.0),
-            segments: Some(20),
-            diameter: Some(0.1),
-            ea: Some(1e8),
-            mass_per_length: Some(50.0),
-            ..Default::default()
-        };
-        run(line).unwrap();
-        let fixture =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../aqua-mesh/tests/fixtures/net_v22.msh");
-        run(Args {
-            from: Some(fixture),
-            ..Default::default()
-        })
-        .unwrap();
-    }
-
-    #[test]
-    fn bad_input_is_input_error() {
-        let cases = [
-            Args {
-                kind: Some(Kind::Ssm),
-                element_length: Some(40.0),
-                ..Default::default()
-            },
-            Args {
-                kind: Some(Kind::Ssm),
-                width: Some(3.0),
-                ..Default::default()
-            },
-            Args {
-                kind: Some(Kind::Csm),
-                tube_depth: Some(3.0),
-                ..Default::default()
-            },
-            Args {
-                from: Some("/nonexistent/net.msh".into()),
-                ..Default::default()
-            },
-            Args {
-                kind: Some(Kind::Cct),
-                out: Some(tmp("cage.vtk")),
-                ..Default::default()
-            },
-            Args::default(),
-        ];
-        for a in cases {
-            let e = run(a).unwrap_err();
-            assert!(crate::is_input_error(&e), "{e:#}");
         }
     }
 }

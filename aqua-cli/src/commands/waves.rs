@@ -5,15 +5,13 @@
 //! time series `t,x,y,z,eta,u,v,w,ax,ay,az` at given points and the component table.
 
 use crate::InputError;
-use crate::scene;
-use anyhow::Context;
 use aqua_env::config::{
     CurrentKind, DepthValue, GammaValue, SpectrumShape, SpectrumSpec, WaveKind,
 };
-use aqua_env::record::{significant_height, welch};
-use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Stretching, Waves};
+use aqua_env::record::{MeasuredSea, measure_record};
+use aqua_env::{BuildOptions, SeaSpec, SeaSummary, Stretching};
+use aqua_sim::scene;
 use serde::Serialize;
-use std::io::Write;
 use std::path::PathBuf;
 
 /// Flags of `aqua waves`. Flags override the scene's `[sea]` values.
@@ -94,22 +92,11 @@ pub struct Args {
     pub json: bool,
 }
 
-/// Hs and Tp measured from a generated record at x = y = 0.
-#[derive(Debug, Clone, Serialize)]
-pub struct Measured {
-    /// Record length [s].
-    pub record_seconds: f64,
-    /// 4σ_η [m].
-    pub hs: f64,
-    /// Peak period from a Welch spectrum [s].
-    pub tp: f64,
-}
-
 #[derive(Debug, Serialize)]
 struct Report<'a> {
     #[serde(flatten)]
     summary: &'a SeaSummary,
-    measured: Option<Measured>,
+    measured: Option<MeasuredSea>,
 }
 
 /// The scene-file spelling of an enum value (its serde name).
@@ -233,28 +220,6 @@ fn apply_flags(mut spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
     Ok(spec)
 }
 
-/// Generates η at the origin over `record` seconds after the ramp and measures Hs and Tp.
-fn measure(sea: &Sea, record: f64, tp_hint: f64, ramp: f64) -> Option<Measured> {
-    let dt = (tp_hint / 20.0).min(0.5);
-    let n = (record / dt).floor() as usize;
-    if n < 512 {
-        return None;
-    }
-    let eta: Vec<f64> = (0..n)
-        .map(|i| sea.elevation(0.0, 0.0, ramp + i as f64 * dt, Phase::Dynamic))
-        .collect();
-    let mut seg = 64usize;
-    while seg * 2 <= n / 8 {
-        seg *= 2;
-    }
-    let est = welch(&eta, dt, seg)?;
-    Some(Measured {
-        record_seconds: n as f64 * dt,
-        hs: significant_height(&eta),
-        tp: est.peak_period(),
-    })
-}
-
 /// Run `aqua waves`.
 pub fn run(a: Args) -> anyhow::Result<()> {
     let base = match &a.scene {
@@ -303,7 +268,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let measured = summary
         .irregular
         .as_ref()
-        .and_then(|irr| measure(&sea, a.record, irr.tp, summary.wave_ramp_time));
+        .and_then(|irr| measure_record(&sea, a.record, irr.tp, summary.wave_ramp_time));
     if a.json {
         let report = Report {
             summary: &summary,
@@ -314,10 +279,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         print!("{}", format_summary(&summary, measured.as_ref()));
     }
     if let Some(path) = &a.component_table {
-        write_component_table(&sea, path)?;
+        aqua_sim::files::write_component_table(&sea, path)?;
     }
     if let Some(path) = &a.csv {
-        write_series(&sea, &points, a.duration, a.dt, path)?;
+        aqua_sim::files::write_kinematics(&sea, &points, a.duration, a.dt, path)?;
         if !a.json {
             println!(
                 "wrote {} ({} points x {} steps)",
@@ -331,7 +296,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
 }
 
 /// The human-readable sea-state summary.
-pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
+pub fn format_summary(s: &SeaSummary, measured: Option<&MeasuredSea>) -> String {
     use std::fmt::Write as _;
     let mut o = String::new();
     let depth = s
@@ -437,67 +402,4 @@ pub fn format_summary(s: &SeaSummary, measured: Option<&Measured>) -> String {
         let _ = writeln!(o, "warning: {w}");
     }
     o
-}
-
-/// Writes the wave component table (i, ω, T, k, a, β, φ) that reproduces a sea exactly.
-pub fn write_component_table(sea: &Sea, path: &std::path::Path) -> anyhow::Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(f, "i,omega,T,k,a,beta_deg,phase_deg")?;
-    if let Waves::Linear { sum, .. } = sea.waves() {
-        for (i, c) in sum.components().iter().enumerate() {
-            writeln!(
-                f,
-                "{i},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e},{:.17e}",
-                c.omega,
-                c.period(),
-                c.k,
-                c.amplitude,
-                c.direction.to_degrees(),
-                c.phase.to_degrees()
-            )?;
-        }
-    }
-    f.flush()?;
-    Ok(())
-}
-
-fn write_series(
-    sea: &Sea,
-    points: &[[f64; 3]],
-    duration: f64,
-    dt: f64,
-    path: &std::path::Path,
-) -> anyhow::Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(f, "t,x,y,z,eta,u,v,w,ax,ay,az")?;
-    let steps = (duration / dt + 1e-9).floor() as usize;
-    let mut out = vec![aqua_env::FlowPoint::default(); points.len()];
-    for n in 0..=steps {
-        let t = n as f64 * dt;
-        sea.eval(t, Phase::Dynamic, points, &mut out);
-        for (p, k) in points.iter().zip(&out) {
-            let u = k.velocity();
-            let a = [
-                k.current_acc[0] + k.wave_acc[0],
-                k.current_acc[1] + k.wave_acc[1],
-                k.current_acc[2] + k.wave_acc[2],
-            ];
-            // + 0.0 turns −0 into 0 so the CSV never shows "-0".
-            let vals = [k.eta, u[0], u[1], u[2], a[0], a[1], a[2]].map(|v| v + 0.0);
-            if vals.iter().any(|v| !v.is_finite()) {
-                anyhow::bail!("non-finite sea kinematics at t = {t} s, point {p:?}");
-            }
-            writeln!(
-                f,
-                "{t},{},{},{},{},{},{},{},{},{},{}",
-                p[0], p[1], p[2], vals[0], vals[1], vals[2], vals[3], vals[4], vals[5], vals[6]
-            )?;
-        }
-    }
-    f.flush()?;
-    Ok(())
 }

@@ -4,13 +4,12 @@
 //! (b) starting from the as-built net at rest with the current ramped up over 10 s (the hard
 //! case: the net swings back). Issue target: under 8 ms per step.
 
-use aqua_cli::build::build;
-use aqua_cli::commands::run::static_settings;
-use aqua_cli::provider::WaterLoads;
-use aqua_cli::scene::read_scene;
 use aqua_env::Phase;
 use aqua_fem::{DynamicSettings, DynamicSolver, State, solve_static};
 use aqua_hydro::assembly::LoadAssembly;
+use aqua_sim::build::build;
+use aqua_sim::provider::WaterLoads;
+use aqua_sim::scene::read_scene;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -27,7 +26,7 @@ fn bench(c: &mut Criterion) {
     .unwrap();
     let mut loads = WaterLoads::new(assembly, Phase::Static, &built.elements);
     let t = Instant::now();
-    let stat = solve_static(&built.model, &mut loads, &static_settings(&scene)).expect("statics");
+    let stat = solve_static(&built.model, &mut loads, &scene.analysis.statics).expect("statics");
     eprintln!(
         "static solve: {:.2} s, {} Newton iterations",
         t.elapsed().as_secs_f64(),

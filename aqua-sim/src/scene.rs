@@ -17,8 +17,9 @@
 //! [analysis]                     # static / dynamic settings (fem.md §15)
 //! ```
 
-use crate::InputError;
+use crate::error::{Result, SimError};
 use aqua_env::SeaSpec;
+use aqua_fem::{DynamicSettings, ExplicitScheme, ExplicitSettings, MassMatrix, StaticSettings};
 use aqua_hydro::morison::MorisonModelId;
 use aqua_hydro::screen::ScreenModelId;
 use aqua_hydro::wake::WakeSpec;
@@ -29,14 +30,14 @@ use std::path::{Path, PathBuf};
 use toml::{Spanned, Table, Value};
 
 /// Reads a file to a string, with an input error naming it.
-pub fn read_text(path: &Path) -> Result<String, InputError> {
+pub fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(format!("{}: cannot read: {e}", path.display())))
+        .map_err(|e| SimError::input(format!("{}: cannot read: {e}", path.display())))
 }
 
 /// Reads the `[sea]` table of a scene file (a file holding only sea keys at top level is
 /// accepted too, so a bare sea description can be shared between scenes).
-pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
+pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     /// A scene seen only for its `[sea]` table; the other sections are checked elsewhere.
     #[derive(serde::Deserialize)]
     struct SeaOnly {
@@ -46,8 +47,8 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec, InputError> {
     }
     let text = read_text(path)?;
     let table: toml::Table =
-        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
-    let err = |e: toml::de::Error| InputError::new(format!("{}: {e}", path.display()));
+        toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
+    let err = |e: toml::de::Error| SimError::input(format!("{}: {e}", path.display()));
     if table.contains_key("sea") {
         toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)
     } else {
@@ -161,6 +162,30 @@ const LINE_HYDRO_KEYS: &[&str] = &[
     "froude_krylov",
     "knot_correction",
 ];
+
+impl LineHydro {
+    /// These keys with those set in `over` replacing them (inline `[[line]]` keys override
+    /// `[[group]]` keys).
+    pub fn merged(mut self, over: &LineHydro) -> LineHydro {
+        let LineHydro {
+            morison,
+            cn,
+            ct,
+            added_mass,
+            added_mass_axial,
+            froude_krylov,
+            knot_correction,
+        } = over;
+        self.morison = morison.or(self.morison);
+        self.cn = cn.or(self.cn);
+        self.ct = ct.or(self.ct);
+        self.added_mass = added_mass.or(self.added_mass);
+        self.added_mass_axial = added_mass_axial.or(self.added_mass_axial);
+        self.froude_krylov = froude_krylov.or(self.froude_krylov);
+        self.knot_correction = knot_correction.or(self.knot_correction);
+        self
+    }
+}
 
 /// `[[group]]`: settings of an element group by name, across objects.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -277,64 +302,39 @@ pub enum AnalysisKind {
     StaticDynamic,
 }
 
-/// `[analysis.static]` (fem.md §9).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StaticSpec {
-    /// Relative force-residual tolerance.
-    #[serde(default = "d_static_tol")]
-    pub tol: f64,
-    /// Iteration budget per load level.
-    #[serde(default = "d_static_iter")]
-    pub max_iter: usize,
-    /// Initial number of load levels (1 = full load at once).
-    #[serde(default = "d_load_steps")]
-    pub load_steps: usize,
-    /// Smallest load increment.
-    #[serde(default = "d_min_load")]
-    pub min_load_step: f64,
-    /// Initial Ψtc regularisation δ0 (0 = plain Newton).
-    #[serde(default = "d_stab")]
-    pub stabilisation: f64,
-    /// Backtracking line search (off by default).
-    #[serde(default = "d_line_search")]
-    pub line_search: bool,
+/// `[analysis.static]` (fem.md §9): the keys are fields of aqua-fem's [`StaticSettings`], whose
+/// `Default` gives every default; this adapter only says which fields are scene keys.
+#[derive(Deserialize, Serialize)]
+#[serde(
+    remote = "StaticSettings",
+    default = "StaticSettings::default",
+    deny_unknown_fields
+)]
+struct StaticKeys {
+    tol: f64,
+    max_iter: usize,
+    load_steps: usize,
+    min_load_step: f64,
+    stabilisation: f64,
+    line_search: bool,
+    #[serde(skip)]
+    max_pseudo_steps: usize,
+    #[serde(skip)]
+    time: f64,
+    #[serde(skip)]
+    fd_position_jacobian: bool,
 }
 
-// Defaults are aqua-fem's (one owner).
-fn d_static_tol() -> f64 {
-    aqua_fem::StaticSettings::default().tol
-}
-fn d_static_iter() -> usize {
-    aqua_fem::StaticSettings::default().max_iter
-}
-fn d_load_steps() -> usize {
-    aqua_fem::StaticSettings::default().load_steps
-}
-fn d_min_load() -> f64 {
-    aqua_fem::StaticSettings::default().min_load_step
-}
-fn d_stab() -> f64 {
-    aqua_fem::StaticSettings::default().stabilisation
-}
-fn d_line_search() -> bool {
-    aqua_fem::StaticSettings::default().line_search
+/// `analysis.dynamic.mass_matrix`: aqua-fem's [`MassMatrix`] with snake_case scene names.
+#[derive(Deserialize, Serialize)]
+#[serde(remote = "MassMatrix", rename_all = "snake_case")]
+enum MassMatrixKey {
+    Lumped,
+    Consistent,
 }
 
-impl Default for StaticSpec {
-    fn default() -> Self {
-        Self {
-            tol: d_static_tol(),
-            max_iter: d_static_iter(),
-            load_steps: d_load_steps(),
-            min_load_step: d_min_load(),
-            stabilisation: d_stab(),
-            line_search: d_line_search(),
-        }
-    }
-}
-
-/// `analysis.dynamic.scheme`.
+/// `analysis.dynamic.scheme`: the implicit HHT-α integrator or one of aqua-fem's
+/// [`ExplicitScheme`]s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Scheme {
@@ -347,107 +347,89 @@ pub enum Scheme {
     Rk4,
 }
 
-/// `analysis.dynamic.mass_matrix`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MassSpec {
-    /// Lumped (default).
-    #[default]
-    Lumped,
-    /// Consistent.
-    Consistent,
+impl Scheme {
+    /// The explicit scheme, or `None` for HHT-α.
+    pub fn explicit(self) -> Option<ExplicitScheme> {
+        match self {
+            Scheme::Hht => None,
+            Scheme::SemiImplicitEuler => Some(ExplicitScheme::SemiImplicitEuler),
+            Scheme::Rk4 => Some(ExplicitScheme::Rk4),
+        }
+    }
 }
 
-/// `[analysis.dynamic]` (fem.md §10–§12).
+/// `[analysis.dynamic]` (fem.md §10–§12): the keys of aqua-fem's [`DynamicSettings`] (HHT-α)
+/// and [`ExplicitSettings`]; defaults not given here are theirs
+/// ([`DynamicSpec::default`]). Resolved into solver settings by [`crate::plan::Plan`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct DynamicSpec {
     /// Integrator.
-    #[serde(default)]
     pub scheme: Scheme,
     /// HHT α ∈ [0, 1/3] (default 0.3); exclusive with rho_inf.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub alpha: Option<f64>,
     /// Spectral radius at infinity ρ∞ ∈ [0.5, 1]; exclusive with alpha.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rho_inf: Option<f64>,
-    /// Time step [s] (HHT: nominal; explicit: upper bound, default the stable estimate).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Time step [s] (HHT: nominal, default [`DEFAULT_DT`]; explicit: upper bound, default
+    /// the stable estimate).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub dt: Option<f64>,
     /// End time [s].
-    #[serde(default = "d_t_end")]
     pub t_end: f64,
     /// Smallest step before the run stops [s] (default dt/1024).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub dt_min: Option<f64>,
     /// Explicit: error instead of reducing a user dt above the stable step.
-    #[serde(default)]
     pub dt_fixed: bool,
     /// Newton tolerance (relative force residual).
-    #[serde(default = "d_dyn_tol")]
     pub tol: f64,
     /// Newton iterations per step.
-    #[serde(default = "d_dyn_iter")]
     pub max_iter: usize,
     /// Lumped or consistent mass.
-    #[serde(default)]
-    pub mass_matrix: MassSpec,
+    #[serde(with = "MassMatrixKey")]
+    pub mass_matrix: MassMatrix,
     /// Rayleigh damping [a_M, a_K].
-    #[serde(default)]
     pub rayleigh: [f64; 2],
     /// Explicit stability factor.
-    #[serde(default = "d_cfl")]
     pub cfl: f64,
-    /// Output interval [s] (default dt; at least every step).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Output interval [s] (default max(dt, t_end/200); at least every step).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub output_interval: Option<f64>,
     /// Largest strain before a step is rejected.
-    #[serde(default = "d_max_strain")]
     pub max_strain: f64,
     /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
     /// halves the residual (1 = full Newton).
-    #[serde(default = "d_reuse")]
     pub reuse_factor: usize,
 }
 
-fn d_reuse() -> usize {
-    1
-}
-
-fn d_t_end() -> f64 {
-    10.0
-}
-fn d_dyn_tol() -> f64 {
-    1e-5
-}
-fn d_dyn_iter() -> usize {
-    15
-}
-fn d_cfl() -> f64 {
-    0.5
-}
-fn d_max_strain() -> f64 {
-    1.0
-}
+/// The nominal HHT step when the scene gives none [s].
+pub const DEFAULT_DT: f64 = 0.1;
+/// The end time when the scene gives none [s].
+pub const DEFAULT_T_END: f64 = 10.0;
 
 impl Default for DynamicSpec {
+    /// aqua-fem's defaults, with the scene's end time.
     fn default() -> Self {
+        let hht = DynamicSettings::new(DEFAULT_DT, DEFAULT_T_END);
+        let explicit = ExplicitSettings::new(DEFAULT_T_END);
         Self {
             scheme: Scheme::Hht,
             alpha: None,
             rho_inf: None,
             dt: None,
-            t_end: d_t_end(),
-            dt_min: None,
-            dt_fixed: false,
-            tol: d_dyn_tol(),
-            max_iter: d_dyn_iter(),
-            mass_matrix: MassSpec::Lumped,
-            rayleigh: [0.0; 2],
-            cfl: d_cfl(),
+            t_end: DEFAULT_T_END,
+            dt_min: hht.dt_min,
+            dt_fixed: explicit.dt_fixed,
+            tol: hht.tol,
+            max_iter: hht.max_iter,
+            mass_matrix: hht.mass_matrix,
+            rayleigh: hht.rayleigh,
+            cfl: explicit.cfl,
             output_interval: None,
-            max_strain: d_max_strain(),
-            reuse_factor: d_reuse(),
+            max_strain: hht.max_strain,
+            reuse_factor: hht.reuse_factor,
         }
     }
 }
@@ -459,9 +441,9 @@ pub struct AnalysisSpec {
     /// What to compute.
     #[serde(default)]
     pub kind: AnalysisKind,
-    /// Statics settings.
-    #[serde(default, rename = "static")]
-    pub statics: StaticSpec,
+    /// Statics settings (aqua-fem's, read directly).
+    #[serde(default, rename = "static", with = "StaticKeys")]
+    pub statics: StaticSettings,
     /// Dynamics settings.
     #[serde(default)]
     pub dynamic: DynamicSpec,
@@ -604,8 +586,8 @@ impl Ctx<'_> {
         index: usize,
         line: usize,
         msg: impl std::fmt::Display,
-    ) -> InputError {
-        InputError::new(format!(
+    ) -> SimError {
+        SimError::input(format!(
             "{}: line {line}: [[{section}]] #{}: {msg}",
             self.path.display(),
             index + 1
@@ -619,7 +601,7 @@ impl Ctx<'_> {
         line: usize,
         prefix: &str,
         table: Table,
-    ) -> Result<T, InputError> {
+    ) -> Result<T> {
         Value::Table(table).try_into::<T>().map_err(|e| {
             let msg = e.to_string();
             let msg = msg.trim();
@@ -631,6 +613,76 @@ impl Ctx<'_> {
         })
     }
 
+    /// Every table of a section, typed by `f(index, line, table)`, with its line.
+    fn each<T>(
+        &self,
+        list: &[Spanned<Table>],
+        mut f: impl FnMut(usize, usize, Table) -> Result<T>,
+    ) -> Result<Vec<Located<T>>> {
+        list.iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let line = line_of(self.text, s.span().start);
+                f(i, line, s.get_ref().clone()).map(|value| Located { line, value })
+            })
+            .collect()
+    }
+
+    /// A `[[mesh]]`: gmsh files are found relative to the scene file.
+    fn gmsh(&self, i: usize, line: usize, mut t: Table) -> Result<MeshSpec> {
+        let net_hydro = self.net_hydro("mesh", i, line, &mut t)?;
+        let mut params: GmshParams = self.typed("mesh", i, line, "", t)?;
+        if params.file.is_relative()
+            && let Some(dir) = self.path.parent()
+        {
+            params.file = dir.join(&params.file);
+        }
+        Ok(MeshSpec { params, net_hydro })
+    }
+
+    /// A `[[group]]`: its name, Morison keys and section overrides.
+    fn group(&self, i: usize, line: usize, mut t: Table) -> Result<GroupSpec> {
+        let name = match t.remove("name") {
+            Some(Value::String(n)) => n,
+            Some(v) => {
+                return Err(self.err("group", i, line, format!("name = {v}: a group name string")));
+            }
+            None => {
+                return Err(self.err(
+                    "group",
+                    i,
+                    line,
+                    "name is missing: the element group to set (e.g. \"ropes\")",
+                ));
+            }
+        };
+        let hydro = self.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+        let section = self.typed("group", i, line, "", t)?;
+        Ok(GroupSpec {
+            name,
+            section,
+            hydro,
+        })
+    }
+
+    /// A `[[fix]]` with its DOFs checked.
+    fn fix(&self, i: usize, line: usize, t: Table) -> Result<FixSpec> {
+        let value: FixSpec = self.typed("fix", i, line, "", t)?;
+        if let Some(d) = value
+            .dofs
+            .iter()
+            .find(|d| !matches!(d.as_str(), "x" | "y" | "z"))
+        {
+            return Err(self.err(
+                "fix",
+                i,
+                line,
+                format!("dofs contains \"{d}\": valid are \"x\", \"y\", \"z\""),
+            ));
+        }
+        Ok(value)
+    }
+
     /// Splits the hydrodynamic `net.*` keys off an object table.
     fn net_hydro(
         &self,
@@ -638,7 +690,7 @@ impl Ctx<'_> {
         index: usize,
         line: usize,
         table: &mut Table,
-    ) -> Result<NetHydro, InputError> {
+    ) -> Result<NetHydro> {
         let hydro = match table.get_mut("net") {
             Some(Value::Table(net)) => split_keys(net, NET_HYDRO_KEYS),
             Some(other) => {
@@ -656,146 +708,53 @@ impl Ctx<'_> {
 }
 
 /// Reads and type-checks a scene file.
-pub fn read_scene(path: &Path) -> Result<Scene, InputError> {
-    let text = read_text(path)?;
+pub fn read_scene(path: &Path) -> Result<Scene> {
+    parse_scene(&read_text(path)?, path)
+}
+
+/// Type-checks the text of a scene; `path` names it in messages, gives the default scene
+/// name and the folder that relative gmsh files are found in.
+pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
     let raw: RawScene =
-        toml::from_str(&text).map_err(|e| InputError::new(format!("{}: {e}", path.display())))?;
-    let ctx = Ctx { path, text: &text };
+        toml::from_str(text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
+    let ctx = Ctx { path, text };
     let name = raw.name.clone().unwrap_or_else(|| {
         path.file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "scene".into())
     });
     if name.is_empty() || name.contains(['/', '\\']) {
-        return Err(InputError::new(format!(
+        return Err(SimError::input(format!(
             "{}: name = \"{name}\": a non-empty scene name without path separators",
             path.display()
         )));
     }
-    let located = |s: &Spanned<Table>| (line_of(&text, s.span().start), s.get_ref().clone());
-
-    let mut cage = Vec::new();
-    for (i, s) in raw.cage.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
-        let params: CageParams = ctx.typed("cage", i, line, "", t)?;
-        cage.push(Located {
-            line,
-            value: CageSpec { params, net_hydro },
-        });
-    }
-    let mut panel = Vec::new();
-    for (i, s) in raw.panel.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
-        let params: PanelParams = ctx.typed("panel", i, line, "", t)?;
-        panel.push(Located {
-            line,
-            value: PanelSpec { params, net_hydro },
-        });
-    }
-    let mut mesh = Vec::new();
-    for (i, s) in raw.mesh.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let net_hydro = ctx.net_hydro("mesh", i, line, &mut t)?;
-        let mut params: GmshParams = ctx.typed("mesh", i, line, "", t)?;
-        // gmsh files are found relative to the scene file.
-        if params.file.is_relative()
-            && let Some(dir) = path.parent()
-        {
-            params.file = dir.join(&params.file);
-        }
-        mesh.push(Located {
-            line,
-            value: MeshSpec { params, net_hydro },
-        });
-    }
-    let mut line_specs = Vec::new();
-    for (i, s) in raw.line.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let hydro: LineHydro =
-            ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
-        let params: LineParams = ctx.typed("line", i, line, "", t)?;
-        line_specs.push(Located {
-            line,
-            value: LineSpec { params, hydro },
-        });
-    }
-    let mut group = Vec::new();
-    for (i, s) in raw.group.iter().enumerate() {
-        let (line, mut t) = located(s);
-        let name = match t.remove("name") {
-            Some(Value::String(n)) => n,
-            Some(v) => {
-                return Err(ctx.err("group", i, line, format!("name = {v}: a group name string")));
-            }
-            None => {
-                return Err(ctx.err(
-                    "group",
-                    i,
-                    line,
-                    "name is missing: the element group to set (e.g. \"ropes\")",
-                ));
-            }
-        };
-        let hydro: LineHydro =
-            ctx.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
-        let section: SectionOverride = ctx.typed("group", i, line, "", t)?;
-        group.push(Located {
-            line,
-            value: GroupSpec {
-                name,
-                section,
-                hydro,
-            },
-        });
-    }
-    let simple =
-        |section: &str, list: &[Spanned<Table>]| -> Result<Vec<(usize, Table)>, InputError> {
-            let _ = section;
-            Ok(list.iter().map(located).collect())
-        };
-    let mut point = Vec::new();
-    for (i, (line, t)) in simple("point", &raw.point)?.into_iter().enumerate() {
-        let value: PointSpec = ctx.typed("point", i, line, "", t)?;
-        point.push(Located { line, value });
-    }
-    let mut fix = Vec::new();
-    for (i, (line, t)) in simple("fix", &raw.fix)?.into_iter().enumerate() {
-        let value: FixSpec = ctx.typed("fix", i, line, "", t)?;
-        for d in &value.dofs {
-            if !matches!(d.as_str(), "x" | "y" | "z") {
-                return Err(ctx.err(
-                    "fix",
-                    i,
-                    line,
-                    format!("dofs contains \"{d}\": valid are \"x\", \"y\", \"z\""),
-                ));
-            }
-        }
-        fix.push(Located { line, value });
-    }
-    let mut prescribed = Vec::new();
-    for (i, (line, t)) in simple("prescribed", &raw.prescribed)?
-        .into_iter()
-        .enumerate()
-    {
-        let value: PrescribedSpec = ctx.typed("prescribed", i, line, "", t)?;
-        prescribed.push(Located { line, value });
-    }
-    let _ = &ctx.text;
     Ok(Scene {
         name,
         path: path.to_path_buf(),
         sea: raw.sea,
-        cage,
-        panel,
-        line: line_specs,
-        mesh,
-        group,
-        point,
-        fix,
-        prescribed,
+        cage: ctx.each(&raw.cage, |i, line, mut t| {
+            let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
+            let params = ctx.typed("cage", i, line, "", t)?;
+            Ok(CageSpec { params, net_hydro })
+        })?,
+        panel: ctx.each(&raw.panel, |i, line, mut t| {
+            let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
+            let params = ctx.typed("panel", i, line, "", t)?;
+            Ok(PanelSpec { params, net_hydro })
+        })?,
+        line: ctx.each(&raw.line, |i, line, mut t| {
+            let hydro = ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+            let params = ctx.typed("line", i, line, "", t)?;
+            Ok(LineSpec { params, hydro })
+        })?,
+        mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
+        group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
+        point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
+        fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,
+        prescribed: ctx.each(&raw.prescribed, |i, line, t| {
+            ctx.typed("prescribed", i, line, "", t)
+        })?,
         analysis: raw.analysis,
     })
 }

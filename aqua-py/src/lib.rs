@@ -1,0 +1,418 @@
+//! The Python module `aqua`: scenes, runs returned as numpy arrays, and a coupling interface
+//! in the create → init → step → close style of mooring codes.
+//!
+//! ```python
+//! import aqua
+//! scene = aqua.Scene.load("examples/mooring-chain.toml")
+//! scene.check()                       # list of diagnostics (dicts); raises aqua.AquaError
+//! res = scene.run(out="out/chain")    # res.summary["chain_fairlead_reaction"], res.positions
+//! sim = aqua.Coupling(scene)
+//! f0 = sim.init()                     # {"chain/fairlead": array (1, 3)} at equilibrium
+//! f = sim.step(0.0, 0.1, {"chain/fairlead": [100.1, 0.0, -5.0]})
+//! sim.close()
+//! ```
+//!
+//! Errors are `aqua.AquaError` with the message `aqua` prints after "error: ".
+
+use aqua_sim::coupling::{Forces, Target};
+use aqua_sim::files::RunFiles;
+use aqua_sim::{Frame, Observer, SimError};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+create_exception!(
+    aqua,
+    AquaError,
+    PyException,
+    "An invalid scene or a failed computation; the message is the one `aqua` prints."
+);
+
+fn err(e: SimError) -> PyErr {
+    AquaError::new_err(e.chain())
+}
+
+/// A scene: the TOML file's contents, type-checked.
+#[pyclass(module = "aqua", frozen)]
+struct Scene {
+    inner: aqua_sim::Scene,
+}
+
+#[pymethods]
+impl Scene {
+    /// Reads a scene file.
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        aqua_sim::read_scene(&path)
+            .map(|inner| Self { inner })
+            .map_err(err)
+    }
+
+    /// A scene from a dict with the TOML file's structure; `path` names it in messages and
+    /// relative gmsh files are found next to it.
+    #[staticmethod]
+    #[pyo3(signature = (d, path = "scene.toml"))]
+    fn from_dict(py: Python<'_>, d: &Bound<'_, PyDict>, path: &str) -> PyResult<Self> {
+        let json: String = py.import("json")?.call_method1("dumps", (d,))?.extract()?;
+        let value: serde_json::Value =
+            serde_json::from_str(&json).map_err(|e| AquaError::new_err(format!("{path}: {e}")))?;
+        let text = toml::to_string(&value)
+            .map_err(|e| AquaError::new_err(format!("{path}: not a scene table: {e}")))?;
+        aqua_sim::scene::parse_scene(&text, Path::new(path))
+            .map(|inner| Self { inner })
+            .map_err(err)
+    }
+
+    /// The scene name.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+
+    /// Validates the scene as `aqua check` does; returns the diagnostics as dicts with
+    /// `code`, `severity`, `location`, `message`.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let scene = self.inner.clone();
+        let report = py
+            .detach(|| {
+                let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)?;
+                aqua_sim::check::report(&prep)
+            })
+            .map_err(err)?;
+        report
+            .warnings
+            .iter()
+            .map(|d| {
+                let dict = PyDict::new(py);
+                dict.set_item("code", d.code)?;
+                dict.set_item(
+                    "severity",
+                    match d.severity {
+                        aqua_sim::Severity::Note => "note",
+                        aqua_sim::Severity::Warning => "warning",
+                    },
+                )?;
+                dict.set_item("location", &d.location)?;
+                dict.set_item("message", &d.message)?;
+                Ok(dict)
+            })
+            .collect()
+    }
+
+    /// Runs the scene (statics and/or dynamics as its `[analysis]` says). With `out`, writes
+    /// the same files as `aqua run --out`. Returns the output steps as numpy arrays.
+    #[pyo3(signature = (out = None))]
+    fn run(&self, py: Python<'_>, out: Option<PathBuf>) -> PyResult<Results> {
+        let scene = self.inner.clone();
+        py.detach(|| run_scene(scene, out)).map_err(err)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Scene({:?})", self.inner.name)
+    }
+}
+
+/// Collects every output step in memory (and writes the files when asked).
+struct Collect<'a> {
+    built: &'a aqua_sim::Built,
+    files: Option<RunFiles>,
+    rows: Vec<Vec<f64>>,
+    positions: Vec<f64>,
+    tensions: Vec<f64>,
+}
+
+impl Observer for Collect<'_> {
+    fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
+        if let Some(files) = &mut self.files {
+            files.write_step(self.built, f.state, f.outputs, f.wake, f.row)?;
+        }
+        self.rows.push(f.row.values());
+        self.positions.extend(f.state.x.iter().flatten());
+        self.tensions.extend(&f.outputs.tension);
+        Ok(())
+    }
+}
+
+fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<Results> {
+    let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)?;
+    let mut sim = aqua_sim::Simulation::new(&prep)?;
+    let files = match &out {
+        Some(dir) => Some(RunFiles::create(dir, &prep.scene.name, &prep.built)?),
+        None => None,
+    };
+    let mut c = Collect {
+        built: &prep.built,
+        files,
+        rows: Vec::new(),
+        positions: Vec::new(),
+        tensions: Vec::new(),
+    };
+    let (record, result) = sim.run(&mut c);
+    result?;
+    Ok(Results {
+        columns: aqua_sim::SummaryRow::columns(&prep.built),
+        rows: c.rows,
+        positions: c.positions,
+        tensions: c.tensions,
+        n_nodes: prep.built.model.n_nodes(),
+        n_elements: prep.built.model.elements().len(),
+        status: record.ending.as_str().to_string(),
+    })
+}
+
+/// The output steps of a run.
+#[pyclass(module = "aqua", frozen)]
+struct Results {
+    columns: Vec<String>,
+    rows: Vec<Vec<f64>>,
+    positions: Vec<f64>,
+    tensions: Vec<f64>,
+    n_nodes: usize,
+    n_elements: usize,
+    status: String,
+}
+
+#[pymethods]
+impl Results {
+    /// `summary.csv` column names.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.columns.clone()
+    }
+
+    /// How the run ended ("completed").
+    #[getter]
+    fn status(&self) -> String {
+        self.status.clone()
+    }
+
+    /// Times of the output steps [s].
+    #[getter]
+    fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.column(py, "t")
+    }
+
+    /// The summary columns by name: {name: array (n_steps,)}.
+    #[getter]
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for name in &self.columns {
+            d.set_item(name, self.column(py, name)?)?;
+        }
+        Ok(d)
+    }
+
+    /// One summary column (n_steps,).
+    fn column<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let k = self.columns.iter().position(|c| c == name).ok_or_else(|| {
+            pyo3::exceptions::PyKeyError::new_err(format!(
+                "{name}: no such column; columns: {}",
+                self.columns.join(", ")
+            ))
+        })?;
+        Ok(PyArray1::from_vec(
+            py,
+            self.rows.iter().map(|r| r[k]).collect(),
+        ))
+    }
+
+    /// Node positions [m], (n_steps, n_nodes, 3).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let a = PyArray1::from_vec(py, self.positions.clone());
+        Ok(a.reshape([self.rows.len(), self.n_nodes, 3])?.into_any())
+    }
+
+    /// Element tensions [N], (n_steps, n_elements).
+    #[getter]
+    fn tensions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let a = PyArray1::from_vec(py, self.tensions.clone());
+        Ok(a.reshape([self.rows.len(), self.n_elements])?.into_any())
+    }
+
+    fn __len__(&self) -> usize {
+        self.rows.len()
+    }
+}
+
+/// Drives the `[[prescribed]]` node groups of a scene from Python, MoorDyn style:
+/// `init()` (static equilibrium), `step(t, dt, {name: position})`, `close()`.
+///
+/// Positions are absolute [m], one row per node of the group ((3,) for one node); a value may
+/// also be a dict with `position`, `velocity` and `acceleration`. The returned forces are the
+/// structure's forces on each group's nodes [N], {name: array (n_nodes, 3)}.
+#[pyclass(module = "aqua", frozen)]
+struct Coupling {
+    inner: Mutex<Option<aqua_sim::Coupling>>,
+    names: Vec<String>,
+}
+
+fn rows(obj: &Bound<'_, PyAny>) -> PyResult<Vec<[f64; 3]>> {
+    let three = |v: Vec<f64>| -> PyResult<[f64; 3]> {
+        <[f64; 3]>::try_from(v.as_slice()).map_err(|_| {
+            pyo3::exceptions::PyValueError::new_err(format!(
+                "a position has 3 coordinates, got {}",
+                v.len()
+            ))
+        })
+    };
+    if let Ok(v) = obj.extract::<Vec<f64>>() {
+        return Ok(vec![three(v)?]);
+    }
+    obj.extract::<Vec<Vec<f64>>>()?
+        .into_iter()
+        .map(three)
+        .collect()
+}
+
+fn target(obj: &Bound<'_, PyAny>) -> PyResult<Target> {
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let get = |k: &str| -> PyResult<Option<Vec<[f64; 3]>>> {
+            d.get_item(k)?.map(|v| rows(&v)).transpose()
+        };
+        return Ok(Target {
+            position: get("position")?.ok_or_else(|| {
+                pyo3::exceptions::PyValueError::new_err("a target dict needs \"position\"")
+            })?,
+            velocity: get("velocity")?,
+            acceleration: get("acceleration")?,
+        });
+    }
+    Ok(Target {
+        position: rows(obj)?,
+        ..Target::default()
+    })
+}
+
+impl Coupling {
+    fn with<T>(
+        &self,
+        f: impl FnOnce(&mut aqua_sim::Coupling) -> aqua_sim::Result<T>,
+    ) -> PyResult<T> {
+        let mut guard = self.inner.lock().map_err(|_| {
+            AquaError::new_err("coupling: a previous call panicked; create a new Coupling")
+        })?;
+        let c = guard
+            .as_mut()
+            .ok_or_else(|| AquaError::new_err("coupling: the coupling is closed"))?;
+        f(c).map_err(err)
+    }
+
+    fn forces<'py>(&self, py: Python<'py>, f: Forces) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, rows) in self.names.iter().zip(f) {
+            let n = rows.len();
+            let a = PyArray1::from_vec(py, rows.into_iter().flatten().collect());
+            d.set_item(name, a.reshape([n, 3])?)?;
+        }
+        Ok(d)
+    }
+}
+
+#[pymethods]
+impl Coupling {
+    /// Builds the scene (a `Scene` or a path) with its `[[prescribed]]` nodes driven from
+    /// Python.
+    #[new]
+    fn new(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let scene = match scene.cast::<Scene>() {
+            Ok(s) => s.get().inner.clone(),
+            Err(_) => aqua_sim::read_scene(&scene.extract::<PathBuf>()?).map_err(err)?,
+        };
+        let c = py.detach(|| aqua_sim::Coupling::new(scene)).map_err(err)?;
+        let names = c.points().iter().map(|p| p.name.clone()).collect();
+        Ok(Self {
+            inner: Mutex::new(Some(c)),
+            names,
+        })
+    }
+
+    /// Names of the coupled node groups.
+    #[getter]
+    fn points(&self) -> Vec<String> {
+        self.names.clone()
+    }
+
+    /// Model time [s].
+    #[getter]
+    fn time(&self) -> PyResult<f64> {
+        self.with(|c| Ok(c.time()))
+    }
+
+    /// Static equilibrium (as-built state for a dynamic-only scene); returns the forces.
+    fn init<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let f = py.detach(|| self.with(|c| c.init()))?;
+        self.forces(py, f)
+    }
+
+    /// Advances from t to t + dt with the given groups at their positions at t + dt; the
+    /// others stay. Returns the forces at t + dt.
+    #[pyo3(signature = (t, dt, targets = None))]
+    fn step<'py>(
+        &self,
+        py: Python<'py>,
+        t: f64,
+        dt: f64,
+        targets: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let mut list = Vec::new();
+        if let Some(targets) = targets {
+            for (k, v) in targets.iter() {
+                let name: String = k.extract()?;
+                let i = self.with(|c| c.point(&name))?;
+                list.push((i, target(&v)?));
+            }
+        }
+        let f = py.detach(|| self.with(|c| c.step(t, dt, &list)))?;
+        self.forces(py, f)
+    }
+
+    /// Positions of all nodes [m], (n_nodes, 3).
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let x = self.with(|c| c.positions())?;
+        let n = x.len();
+        let a = PyArray1::from_vec(py, x.into_iter().flatten().collect());
+        Ok(a.reshape([n, 3])?.into_any())
+    }
+
+    /// Stops the solver; later calls raise.
+    fn close(&self) -> PyResult<()> {
+        let mut guard = self
+            .inner
+            .lock()
+            .map_err(|_| AquaError::new_err("coupling: a previous call panicked"))?;
+        if let Some(mut c) = guard.take() {
+            c.close();
+        }
+        Ok(())
+    }
+
+    fn __enter__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    fn __exit__(
+        &self,
+        _t: &Bound<'_, PyAny>,
+        _v: &Bound<'_, PyAny>,
+        _tb: &Bound<'_, PyAny>,
+    ) -> PyResult<bool> {
+        self.close()?;
+        Ok(false)
+    }
+}
+
+/// The `aqua` module.
+#[pymodule(name = "aqua")]
+fn aqua_py(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Scene>()?;
+    m.add_class::<Results>()?;
+    m.add_class::<Coupling>()?;
+    m.add("AquaError", m.py().get_type::<AquaError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

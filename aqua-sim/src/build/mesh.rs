@@ -1,0 +1,186 @@
+//! The merged mesh of a scene: every `[[cage]]`, `[[panel]]`, `[[mesh]]` and `[[line]]`, with
+//! unique object names; a line whose fairlead names a node of another object is welded to it.
+
+use crate::error::{Result, SimError};
+use crate::scene::{NetHydro, Scene};
+use aqua_hydro::WakeModelId;
+use aqua_mesh::{Fairlead, Mesh, PanelNodes};
+use std::collections::{BTreeMap, HashMap};
+
+fn input(msg: impl Into<String>) -> SimError {
+    SimError::input(msg)
+}
+
+/// Resolves "object/group[k]" (or without `[k]`) to node ids.
+pub fn resolve_ref(mesh: &Mesh, reference: &str) -> Option<Vec<usize>> {
+    if let Some(open) = reference.rfind('[')
+        && reference.ends_with(']')
+    {
+        let k: usize = reference[open + 1..reference.len() - 1]
+            .trim()
+            .parse()
+            .ok()?;
+        let nodes = mesh.resolve_nodes(&reference[..open])?;
+        return nodes.get(k).map(|n| vec![*n]);
+    }
+    mesh.resolve_nodes(reference)
+}
+
+pub(crate) fn group_names_hint(mesh: &Mesh) -> String {
+    let mut names: Vec<String> = mesh
+        .groups
+        .iter()
+        .filter(|g| !g.nodes.is_empty())
+        .map(|g| format!("{}/{}", mesh.objects[g.object as usize].name, g.name))
+        .collect();
+    names.sort();
+    names.dedup();
+    if names.len() > 30 {
+        names.truncate(30);
+        names.push("…".into());
+    }
+    names.join(", ")
+}
+
+/// Merges the last node of the mesh into `target` (a line's fairlead onto an existing node).
+fn weld_last_node(mesh: &mut Mesh, target: usize) {
+    let dup = mesh.nodes.len() - 1;
+    mesh.nodes.pop();
+    mesh.node_owner.pop();
+    let map = |n: &mut usize| {
+        if *n == dup {
+            *n = target;
+        }
+    };
+    for l in &mut mesh.lines {
+        l.nodes.iter_mut().for_each(map);
+    }
+    for p in &mut mesh.panels {
+        match &mut p.nodes {
+            PanelNodes::Tri(n) => n.iter_mut().for_each(map),
+            PanelNodes::Quad(n) => n.iter_mut().for_each(map),
+        }
+    }
+    for g in &mut mesh.groups {
+        g.nodes.iter_mut().for_each(map);
+        g.nodes.sort_unstable();
+        g.nodes.dedup();
+    }
+    for w in &mut mesh.weights {
+        map(&mut w.node);
+    }
+}
+
+pub(crate) fn default_name(given: &Option<String>, kind: &str, i: usize) -> String {
+    given.clone().unwrap_or_else(|| format!("{kind}{i}"))
+}
+
+/// Builds the merged mesh of a scene.
+pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
+    let file = scene.path.display().to_string();
+    let seabed_z = scene.sea.depth.as_ref().and_then(|_| {
+        scene
+            .sea
+            .constants()
+            .ok()
+            .and_then(|c| c.depth.finite())
+            .map(|h| -h)
+    });
+    let mut mesh = Mesh::default();
+    let mut nets: HashMap<String, NetHydro> = HashMap::new();
+    let mut names: BTreeMap<String, usize> = BTreeMap::new();
+    let mut check_name = |name: &str, line: usize| -> Result<()> {
+        if let Some(prev) = names.insert(name.to_string(), line) {
+            return Err(input(format!(
+                "{file}: line {line}: object name \"{name}\" is already used by the object at line {prev}; give each object a unique name"
+            )));
+        }
+        Ok(())
+    };
+    for (i, c) in scene.cage.iter().enumerate() {
+        let mut p = c.value.params.clone();
+        let name = default_name(&p.name, "cage", i);
+        check_name(&name, c.line)?;
+        p.name = Some(name.clone());
+        let m = p.build().map_err(|e| {
+            SimError::at(format!("{file}: line {}: [[cage]] #{}", c.line, i + 1), e)
+        })?;
+        mesh.append(m);
+        nets.insert(name, c.value.net_hydro.clone());
+    }
+    for (i, c) in scene.panel.iter().enumerate() {
+        let mut p = c.value.params.clone();
+        let name = default_name(&p.name, "panel", i);
+        check_name(&name, c.line)?;
+        p.name = Some(name.clone());
+        if let Some(w) = &c.value.net_hydro.wake
+            && w.model != WakeModelId::None
+        {
+            return Err(input(format!(
+                "{file}: line {}: [[panel]] #{}: net.wake.model = \"{}\": a single flat panel has no downstream net; only \"none\" is valid",
+                c.line,
+                i + 1,
+                w.model
+            )));
+        }
+        let m = p.build().map_err(|e| {
+            SimError::at(format!("{file}: line {}: [[panel]] #{}", c.line, i + 1), e)
+        })?;
+        mesh.append(m);
+        nets.insert(name, c.value.net_hydro.clone());
+    }
+    for (i, c) in scene.mesh.iter().enumerate() {
+        let mut p = c.value.params.clone();
+        let name = default_name(&p.name, "mesh", i);
+        check_name(&name, c.line)?;
+        p.name = Some(name.clone());
+        let m = aqua_mesh::import_gmsh(&p).map_err(|e| {
+            SimError::at(format!("{file}: line {}: [[mesh]] #{}", c.line, i + 1), e)
+        })?;
+        mesh.append(m);
+        nets.insert(name, c.value.net_hydro.clone());
+    }
+    for (i, c) in scene.line.iter().enumerate() {
+        let mut p = c.value.params.clone();
+        let name = default_name(&p.name, "line", i);
+        check_name(&name, c.line)?;
+        p.name = Some(name.clone());
+        let mut weld_to = None;
+        let mut fair_pos = None;
+        if let Some(Fairlead::Node(r)) = &p.fairlead {
+            let nodes = resolve_ref(&mesh, r).ok_or_else(|| {
+                input(format!(
+                    "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names no node; use \"object/group[k]\" with one of: {}",
+                    c.line,
+                    i + 1,
+                    group_names_hint(&mesh)
+                ))
+            })?;
+            if nodes.len() != 1 {
+                return Err(input(format!(
+                    "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names {} nodes; pick one with [k], e.g. \"{r}[0]\"",
+                    c.line,
+                    i + 1,
+                    nodes.len()
+                )));
+            }
+            let n = nodes[0];
+            let x = mesh.nodes[n];
+            fair_pos = Some([x.x, x.y, x.z]);
+            weld_to = Some(n);
+        }
+        let m = p.build_with(fair_pos, seabed_z).map_err(|e| {
+            SimError::at(format!("{file}: line {}: [[line]] #{}", c.line, i + 1), e)
+        })?;
+        mesh.append(m);
+        if let Some(target) = weld_to {
+            weld_last_node(&mut mesh, target);
+        }
+    }
+    if mesh.nodes.is_empty() {
+        return Err(input(format!(
+            "{file}: the scene has no structure: add a [[cage]], [[panel]], [[line]] or [[mesh]]"
+        )));
+    }
+    Ok((mesh, nets))
+}

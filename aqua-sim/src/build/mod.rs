@@ -1,0 +1,222 @@
+//! From a scene to what the solvers need: scene → mesh → structural model + sea + water loads.
+//!
+//! [`build`] runs the steps in that order, each a function named after what it builds:
+//! [`build_mesh`] (the merged mesh), [`build_sea`] (the sea, its irregular band weighted at
+//! the structure's top), `build_structure` (aqua-fem model), `build_water_loads` (aqua-hydro
+//! elements) and [`find_line_ends`] (what the outputs report per `[[line]]`).
+
+mod mesh;
+mod structure;
+mod water;
+
+pub use mesh::{build_mesh, resolve_ref};
+pub use structure::Prescribed;
+pub use water::{LoadCell, default_wake};
+
+use crate::diagnostic::Diagnostic;
+use crate::error::{Result, SimError};
+use crate::scene::{AnalysisKind, Scene};
+use aqua_env::{BuildOptions, Sea, SeaSummary};
+use aqua_fem::{ExternalMotion, Model};
+use aqua_hydro::assembly::Elements;
+use aqua_mesh::{Mesh, ObjectKind};
+use std::sync::Arc;
+
+/// Everything a run needs, built from a scene.
+#[derive(Debug)]
+pub struct Built {
+    /// The merged mesh (as built).
+    pub mesh: Mesh,
+    /// The structural model; node i is mesh node i, element e is mesh line e.
+    pub model: Model,
+    /// Hydro load elements (built into a `LoadAssembly` by the caller).
+    pub elements: Elements,
+    /// The sea.
+    pub sea: Arc<Sea>,
+    /// Its summary.
+    pub sea_summary: SeaSummary,
+    /// Per mesh line: true if it is a net twine.
+    pub is_twine: Vec<bool>,
+    /// Per mesh panel: true if it carries screen loads.
+    pub panel_loaded: Vec<bool>,
+    /// Per panel and line load element (assembly order): its mesh cell.
+    pub load_cells: Vec<LoadCell>,
+    /// Names of the structural groups (index = fem group id).
+    pub group_names: Vec<String>,
+    /// Nodes with fixed or prescribed DOFs.
+    pub supported_nodes: Vec<usize>,
+    /// Net panels grouped per net (object, copy) for the enclosed-volume output.
+    pub nets: Vec<NetCells>,
+    /// Per `[[line]]`: name, anchor node, fairlead node, first and last element.
+    pub line_ends: Vec<LineEnds>,
+    /// Externally driven nodes (built with [`Prescribed::External`]): the `[[prescribed]]`
+    /// node reference, its nodes and their motions.
+    pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
+    /// Warnings collected while building (mesh, sea).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// The two ends of a single line (fem.md §14: report end reactions and end-element tensions).
+#[derive(Debug, Clone)]
+pub struct LineEnds {
+    /// Line object name.
+    pub name: String,
+    /// Anchor node.
+    pub anchor: usize,
+    /// Fairlead node.
+    pub fairlead: usize,
+    /// Element at the anchor.
+    pub anchor_element: usize,
+    /// Element at the fairlead.
+    pub fairlead_element: usize,
+}
+
+/// The panels of one net (one cage copy, panel or gmsh net).
+#[derive(Debug, Clone)]
+pub struct NetCells {
+    /// Object name and copy.
+    pub name: String,
+    /// Mesh panel ids.
+    pub panels: Vec<usize>,
+    /// True if the net encloses a volume (cages).
+    pub closed: bool,
+}
+
+/// Builds the whole model of a scene, prescribed nodes moving as the scene says.
+pub fn build(scene: &Scene) -> Result<Built> {
+    build_with(scene, Prescribed::AsScene)
+}
+
+/// Builds the whole model of a scene; `prescribed` says who moves the prescribed nodes.
+pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
+    let file = scene.path.display().to_string();
+    // Sea errors first: they are independent of the structure (the real build needs the
+    // structure's top for the irregular band).
+    scene
+        .sea
+        .build(&BuildOptions::default())
+        .map_err(|e| SimError::at(file.clone(), e))?;
+    let (mesh, nets) = build_mesh(scene)?;
+    let (sea, sea_summary) = build_sea(scene, &mesh)?;
+    let env = structure::environment(scene, sea.constants());
+    let st = structure::build_structure(scene, &mesh, env, prescribed)?;
+    let model = st.builder.build().map_err(|e| SimError::at(file, e))?;
+    let loads = water::build_water_loads(scene, &mesh, &nets, &st.sections, st.hydro_points)?;
+    let mut diagnostics = Diagnostic::warnings("mesh/notice", "mesh", &mesh.notices);
+    diagnostics.extend(Diagnostic::warnings(
+        "sea/range",
+        "sea",
+        &sea_summary.warnings,
+    ));
+    let line_ends = find_line_ends(&mesh);
+    for le in &line_ends {
+        let oi = mesh.objects.iter().position(|o| o.name == le.name);
+        for (end, nd) in [("anchor", le.anchor), ("fairlead", le.fairlead)] {
+            if let Some(msg) = oi.and_then(|oi| free_line_end(&mesh, &model, oi, &le.name, end, nd))
+            {
+                diagnostics.push(Diagnostic::warning("line/free-end", &le.name, msg));
+            }
+        }
+    }
+    Ok(Built {
+        mesh,
+        model,
+        elements: loads.elements,
+        sea: Arc::new(sea),
+        sea_summary,
+        is_twine: loads.is_twine,
+        panel_loaded: loads.panel_loaded,
+        load_cells: loads.load_cells,
+        group_names: st.group_names,
+        supported_nodes: st.supported.into_iter().collect(),
+        nets: loads.nets,
+        line_ends,
+        external: st.external,
+        diagnostics,
+    })
+}
+
+/// The sea of a scene, its irregular band weighted at the shallowest node (environment.md
+/// §1). The current ramps in only when dynamics starts without a static state that has it.
+pub fn build_sea(scene: &Scene, mesh: &Mesh) -> Result<(Sea, SeaSummary)> {
+    let z_top = mesh
+        .nodes
+        .iter()
+        .map(|p| p.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let kind = scene.analysis.kind;
+    let opts = BuildOptions {
+        z_ref: z_top.min(0.0),
+        duration: (kind != AnalysisKind::Static).then_some(scene.analysis.dynamic.t_end),
+    };
+    let (sea, summary) = scene
+        .sea
+        .build(&opts)
+        .map_err(|e| SimError::at(scene.path.display().to_string(), e))?;
+    let ramp = kind == AnalysisKind::Dynamic || !scene.sea.current.in_static;
+    Ok((sea.with_current_ramp(ramp), summary))
+}
+
+/// A line end that nothing holds: not fixed or prescribed in any DOF, and no element or panel
+/// of another object uses it. Statics would let such a line fall and lie on the seabed with a
+/// zero end force, which is almost never what the user meant.
+fn free_line_end(
+    mesh: &Mesh,
+    model: &aqua_fem::Model,
+    object: usize,
+    line: &str,
+    end: &str,
+    node: usize,
+) -> Option<String> {
+    if (0..3).any(|k| model.is_constrained(node, k)) {
+        return None;
+    }
+    let other_line = mesh
+        .lines
+        .iter()
+        .any(|e| e.object as usize != object && e.nodes.contains(&node));
+    let other_panel = mesh
+        .panels
+        .iter()
+        .any(|p| p.nodes.as_slice().contains(&node));
+    if other_line || other_panel {
+        return None;
+    }
+    Some(format!(
+        "line '{line}': its {end} is neither fixed, prescribed nor attached to another object; \
+         the line will fall to the seabed with a zero {end} force. Add \"{end}\" to the line's \
+         `fixed`, give it a [[prescribed]] motion, or set `fairlead` to a node such as \
+         \"cage0/top_ring[0]\""
+    ))
+}
+
+/// Anchor and fairlead nodes and end elements of every `[[line]]` object.
+pub fn find_line_ends(mesh: &Mesh) -> Vec<LineEnds> {
+    let mut line_ends = Vec::new();
+    for (oi, obj) in mesh.objects.iter().enumerate() {
+        if !matches!(obj.kind, ObjectKind::Line) {
+            continue;
+        }
+        let node = |g: &str| {
+            mesh.groups
+                .iter()
+                .find(|x| x.object == oi as u32 && x.name == g)
+                .and_then(|x| x.nodes.first().copied())
+        };
+        let mut elems = (0..mesh.lines.len()).filter(|&e| mesh.lines[e].object == oi as u32);
+        let first = elems.next();
+        let last = elems.next_back().or(first);
+        if let (Some(a), Some(f), Some(first), Some(last)) =
+            (node("anchor"), node("fairlead"), first, last)
+        {
+            line_ends.push(LineEnds {
+                name: obj.name.clone(),
+                anchor: a,
+                fairlead: f,
+                anchor_element: first,
+                fairlead_element: last,
+            });
+        }
+    }
+    line_ends
+}

@@ -1,0 +1,46 @@
+//! aqua-sim: the simulator as a library.
+//!
+//! A scene (TOML, [`scene`]) becomes a model ([`build`]): the merged mesh (aqua-mesh), the
+//! structural model (aqua-fem), the sea (aqua-env) and the water-load elements (aqua-hydro).
+//! [`plan`] validates the analysis (the one validation `aqua check` and `aqua run` share),
+//! [`run`] drives statics and dynamics through the solvers ([`solvers`], the only caller of
+//! aqua-fem's `solve_static`, `DynamicSolver` and `ExplicitSolver`), [`post`] computes the
+//! physical outputs of each output step, [`files`] writes them, and [`coupling`] lets another
+//! code drive prescribed nodes step by step.
+//!
+//! Governing equations (fem.md §2, §9–§12): the semi-discrete equations of motion of the
+//! cable network
+//!
+//! ```text
+//! M ẍ + C ẋ + f_int(x) = f_g + f_w(x, ẋ, ẍ, t) + f_c(x)      (free DOFs)
+//! x_i(t) = X_i + d_i(t)                                       (prescribed nodes)
+//! ```
+//!
+//! with f_w the water loads of [`provider::WaterLoads`] (screen panels, Morison lines, point
+//! bodies, wake shielding) and f_c the seabed contact; statics solves f_int = f_g + f_w + f_c
+//! with ẋ = ẍ = 0 and the full current.
+//!
+//! Errors are typed ([`SimError`]): the `aqua` binary and the Python module turn them into
+//! text; warnings are [`Diagnostic`]s.
+
+pub mod build;
+pub mod check;
+pub mod coupling;
+pub mod diagnostic;
+pub mod error;
+pub mod files;
+pub mod plan;
+pub mod post;
+pub mod provider;
+pub mod run;
+pub mod scene;
+pub mod solvers;
+
+pub use build::{Built, Prescribed, build};
+pub use coupling::Coupling;
+pub use diagnostic::{Diagnostic, Severity};
+pub use error::{ModelError, Result, SimError};
+pub use plan::{Integrator, Plan, Prepared, prepare, prepare_scene};
+pub use post::SummaryRow;
+pub use run::{Ending, Frame, Observer, RunRecord, Simulation};
+pub use scene::{Scene, read_scene};

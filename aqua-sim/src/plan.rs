@@ -1,0 +1,179 @@
+//! The validated analysis of a scene — what `aqua check` reports and `aqua run` runs — and the
+//! one validation both go through ([`prepare`]).
+
+use crate::build::{Built, Prescribed, build_with};
+use crate::diagnostic::Diagnostic;
+use crate::error::{Result, SimError};
+use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene};
+use aqua_fem::{DynamicSettings, ExplicitSettings, StaticSettings};
+use std::path::Path;
+
+/// The time integrator of the dynamic phase, with its aqua-fem settings.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Integrator {
+    /// Implicit HHT-α.
+    Hht(DynamicSettings),
+    /// Explicit lumped mass-spring.
+    Explicit(ExplicitSettings),
+}
+
+/// What a run of the scene computes, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Static, dynamic or both.
+    pub kind: AnalysisKind,
+    /// Static solver settings.
+    pub statics: StaticSettings,
+    /// Dynamic phase (none for a static analysis).
+    pub dynamics: Option<Integrator>,
+    /// HHT α (0 for statics).
+    pub alpha: f64,
+    /// Nominal step [s] (0 for statics).
+    pub dt: f64,
+    /// Output interval [s] (0 for statics).
+    pub output_interval: f64,
+    /// End time [s] (0 for statics).
+    pub t_end: f64,
+}
+
+/// A scene read, built and planned: everything `check` reports on and `run` needs.
+#[derive(Debug)]
+pub struct Prepared {
+    /// The scene.
+    pub scene: Scene,
+    /// Its model.
+    pub built: Built,
+    /// Its analysis.
+    pub plan: Plan,
+}
+
+impl Prepared {
+    /// Warnings of building the model.
+    pub fn diagnostics(&self) -> &[Diagnostic] {
+        &self.built.diagnostics
+    }
+}
+
+/// Reads, builds and plans a scene file: the validation of `aqua check` and `aqua run`.
+pub fn prepare(path: &Path) -> Result<Prepared> {
+    prepare_scene(read_scene(path)?, Prescribed::AsScene)
+}
+
+/// Builds and plans a scene already read.
+pub fn prepare_scene(scene: Scene, prescribed: Prescribed) -> Result<Prepared> {
+    let built = build_with(&scene, prescribed)?;
+    let plan = Plan::of(&scene)?;
+    Ok(Prepared { scene, built, plan })
+}
+
+impl Plan {
+    /// The plan of a scene's `[analysis]`, validated.
+    pub fn of(scene: &Scene) -> Result<Plan> {
+        let kind = scene.analysis.kind;
+        let statics = scene.analysis.statics.clone();
+        if kind == AnalysisKind::Static {
+            return Ok(Plan {
+                kind,
+                statics,
+                dynamics: None,
+                alpha: 0.0,
+                dt: 0.0,
+                output_interval: 0.0,
+                t_end: 0.0,
+            });
+        }
+        let (dt, output_interval, t_end) = timing(scene)?;
+        let alpha = alpha(scene)?;
+        let d = &scene.analysis.dynamic;
+        let integrator = match d.scheme.explicit() {
+            None => {
+                let mut s = DynamicSettings::new(dt, t_end);
+                s.alpha = alpha;
+                s.dt_min = d.dt_min;
+                s.tol = d.tol;
+                s.max_iter = d.max_iter;
+                s.mass_matrix = d.mass_matrix;
+                s.rayleigh = d.rayleigh;
+                s.output_interval = Some(output_interval);
+                s.max_strain = d.max_strain;
+                s.reuse_factor = d.reuse_factor;
+                Integrator::Hht(s)
+            }
+            Some(scheme) => {
+                let mut s = ExplicitSettings::new(t_end);
+                s.scheme = scheme;
+                s.cfl = d.cfl;
+                // An upper bound only: the stable estimate when not given.
+                s.dt = d.dt;
+                s.dt_fixed = d.dt_fixed;
+                s.output_interval = Some(output_interval);
+                Integrator::Explicit(s)
+            }
+        };
+        Ok(Plan {
+            kind,
+            statics,
+            dynamics: Some(integrator),
+            alpha,
+            dt,
+            output_interval,
+            t_end,
+        })
+    }
+}
+
+/// The HHT α the scene asks for (default 0.3), validated.
+fn alpha(scene: &Scene) -> Result<f64> {
+    let d = &scene.analysis.dynamic;
+    let file = scene.path.display();
+    match (d.alpha, d.rho_inf) {
+        (Some(_), Some(_)) => Err(SimError::input(format!(
+            "{file}: [analysis.dynamic]: give either alpha or rho_inf, not both"
+        ))),
+        (Some(a), None) => {
+            if (0.0..=1.0 / 3.0).contains(&a) {
+                Ok(a)
+            } else {
+                Err(SimError::input(format!(
+                    "{file}: analysis.dynamic.alpha = {a}: valid is 0 <= alpha <= 1/3 (our convention; \
+                     the original HHT/Code_Aster ALPHA is -alpha, in [-1/3, 0])"
+                )))
+            }
+        }
+        (None, Some(r)) => DynamicSettings::alpha_from_rho_inf(r)
+            .map_err(|e| SimError::at(format!("{file}: analysis.dynamic.rho_inf"), e)),
+        (None, None) => Ok(DynamicSettings::new(DEFAULT_DT, 1.0).alpha),
+    }
+}
+
+/// The nominal step, output interval and end time, validated.
+fn timing(scene: &Scene) -> Result<(f64, f64, f64)> {
+    let d = &scene.analysis.dynamic;
+    let file = scene.path.display();
+    if !(d.t_end > 0.0 && d.t_end.is_finite()) {
+        return Err(SimError::input(format!(
+            "{file}: analysis.dynamic.t_end = {}: a duration > 0 in s",
+            d.t_end
+        )));
+    }
+    if d.reuse_factor == 0 {
+        return Err(SimError::input(format!(
+            "{file}: analysis.dynamic.reuse_factor = 0: an integer >= 1 (1 = full Newton)"
+        )));
+    }
+    let dt = d.dt.unwrap_or(DEFAULT_DT);
+    if !(dt > 0.0 && dt <= d.t_end) {
+        return Err(SimError::input(format!(
+            "{file}: analysis.dynamic.dt = {dt}: a time step > 0 s and <= t_end ({} s)",
+            d.t_end
+        )));
+    }
+    // 200 output steps over the run at most, by default.
+    let out = d.output_interval.unwrap_or(dt.max(d.t_end / 200.0));
+    if !(out > 0.0) {
+        return Err(SimError::input(format!(
+            "{file}: analysis.dynamic.output_interval = {out}: an interval > 0 in s"
+        )));
+    }
+    Ok((dt, out.max(dt), d.t_end))
+}

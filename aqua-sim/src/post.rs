@@ -1,0 +1,266 @@
+//! Physical post-processing of a state: the enclosed net volume, the support reactions and
+//! their moment, the net force and the wake factor per mesh cell, the largest tension per
+//! group and the line-end values — one [`SummaryRow`] per output step.
+//!
+//! - Enclosed volume (divergence theorem with F = (0, 0, z − z0)):
+//!   V = |Σ_panels (z̄ − z0)·A_z|, z0 the rim height (mean z of the `net_top` nodes).
+//! - Reactions R = Σ_supported r_i, moment M = Σ x_i × r_i about the origin.
+//! - Net force: Σ of the water loads of the net panels and twines at the state.
+
+use crate::build::{Built, NetCells};
+use crate::provider::WaterLoads;
+use aqua_fem::{Outputs, State};
+use aqua_hydro::assembly::ElementOutput;
+use aqua_mesh::{PanelNodes, Role};
+use nalgebra::Vector3;
+use serde::Serialize;
+
+/// One row of `summary.csv`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SummaryRow {
+    /// Time [s].
+    pub t: f64,
+    /// Total hydrodynamic force on the nets (panels and twines) [N].
+    pub net_force: [f64; 3],
+    /// Sum of reactions at fixed and prescribed nodes (force of the supports on the
+    /// structure) [N].
+    pub reaction: [f64; 3],
+    /// Enclosed net volume [m³] (cages; 0 without a closed net).
+    pub volume: f64,
+    /// Moment of the reactions about the origin [N·m].
+    pub reaction_moment: [f64; 3],
+    /// Volume over the undeformed volume.
+    pub volume_ratio: f64,
+    /// Largest tension per structural group [N].
+    pub max_tension: Vec<f64>,
+    /// Per line: |R| at the anchor, |R| at the fairlead, tension of the anchor element and of
+    /// the fairlead element [N].
+    pub line_ends: Vec<[f64; 4]>,
+    /// Newton iterations of the step (statics: all iterations).
+    pub iterations: usize,
+    /// Step size [s] (0 for statics).
+    pub dt: f64,
+}
+
+/// Signed volume between the net surface and the plane z = z0 (divergence theorem with
+/// F = (0, 0, z − z0)): for a net open only at a top rim lying in that plane this is the
+/// enclosed volume [m³].
+pub fn enclosed_volume(net: &NetCells, mesh: &aqua_mesh::Mesh, x: &[[f64; 3]], z0: f64) -> f64 {
+    let p = |i: usize| Vector3::from(x[i]);
+    let tri = |a: usize, b: usize, c: usize| {
+        let area = 0.5 * (p(b) - p(a)).cross(&(p(c) - p(a)));
+        let zc = (x[a][2] + x[b][2] + x[c][2]) / 3.0;
+        (zc - z0) * area.z
+    };
+    let mut v = 0.0;
+    for &pi in &net.panels {
+        v += match mesh.panels[pi].nodes {
+            PanelNodes::Tri([a, b, c]) => tri(a, b, c),
+            PanelNodes::Quad([a, b, c, d]) => {
+                0.5 * (tri(a, b, c) + tri(a, c, d) + tri(b, c, d) + tri(b, d, a))
+            }
+        };
+    }
+    v.abs()
+}
+
+/// The rim height of a net: mean z of its `net_top` nodes (0 if it has none).
+fn rim_height(net: &NetCells, mesh: &aqua_mesh::Mesh, x: &[[f64; 3]]) -> f64 {
+    let Some(&first) = net.panels.first() else {
+        return 0.0;
+    };
+    let object = mesh.panels[first].object;
+    let copy = mesh.panels[first].copy;
+    let mut sum = 0.0;
+    let mut n = 0usize;
+    for g in mesh
+        .groups
+        .iter()
+        .filter(|g| g.object == object && g.role == Role::NetTop)
+    {
+        for &node in &g.nodes {
+            if mesh.node_owner[node].1 == copy {
+                sum += x[node][2];
+                n += 1;
+            }
+        }
+    }
+    if n == 0 { 0.0 } else { sum / n as f64 }
+}
+
+/// Total enclosed volume of all closed nets [m³].
+pub fn total_volume(built: &Built, x: &[[f64; 3]]) -> f64 {
+    built
+        .nets
+        .iter()
+        .filter(|n| n.closed)
+        .map(|n| enclosed_volume(n, &built.mesh, x, rim_height(n, &built.mesh, x)))
+        .sum()
+}
+
+/// Net force and wake factors at a state (net panels and twines only); the wake factor is
+/// per VTK cell (mesh lines first, then mesh panels; 1 outside a wake).
+pub fn net_force_and_wake(
+    built: &Built,
+    loads: &WaterLoads,
+    state: &State,
+) -> ([f64; 3], Vec<f64>) {
+    let assembly = &loads.assembly;
+    let (x, v) = (&state.x, &state.v);
+    let mut f = [0.0; 3];
+    let mut out = ElementOutput::default();
+    let mut xs = [[0.0; 3]; 4];
+    let mut vs = [[0.0; 3]; 4];
+    for (e, cell) in built.load_cells.iter().enumerate() {
+        if !cell.net {
+            continue;
+        }
+        let nodes = assembly.element_nodes(e);
+        for (i, &n) in nodes.iter().enumerate() {
+            xs[i] = x[n];
+            vs[i] = v[n];
+        }
+        let k = nodes.len();
+        assembly.element_load(e, &xs[..k], &vs[..k], aqua_hydro::Want::default(), &mut out);
+        for node_force in &out.force[..k] {
+            for c in 0..3 {
+                f[c] += node_force[c];
+            }
+        }
+    }
+    let mesh = &built.mesh;
+    let mut wake = vec![1.0; mesh.lines.len() + mesh.panels.len()];
+    for (cell, w) in built.load_cells.iter().zip(assembly.wake()) {
+        wake[cell.cell] = w.factor;
+    }
+    (f, wake)
+}
+
+/// Sum of the reactions at the supported nodes [N] and their moment about the origin [N·m].
+pub fn support_reactions(built: &Built, x: &[[f64; 3]], out: &Outputs) -> ([f64; 3], [f64; 3]) {
+    let mut reaction = [0.0; 3];
+    let mut moment = Vector3::zeros();
+    for &n in &built.supported_nodes {
+        for k in 0..3 {
+            reaction[k] += out.reaction[n][k];
+        }
+        moment += Vector3::from(x[n]).cross(&Vector3::from(out.reaction[n]));
+    }
+    (reaction, [moment.x, moment.y, moment.z])
+}
+
+impl SummaryRow {
+    /// The summary of a state: `net_force` from [`net_force_and_wake`], `volume0` the
+    /// undeformed enclosed volume ([`total_volume`] of the model's nodes).
+    pub fn of_state(
+        built: &Built,
+        state: &State,
+        out: &Outputs,
+        net_force: [f64; 3],
+        volume0: f64,
+        iterations: usize,
+        dt: f64,
+    ) -> Self {
+        let x = &state.x;
+        let (reaction, reaction_moment) = support_reactions(built, x, out);
+        let volume = total_volume(built, x);
+        let max_tension: Vec<f64> = built
+            .model
+            .groups()
+            .iter()
+            .map(|g| {
+                g.elements
+                    .iter()
+                    .map(|&e| out.tension[e])
+                    .fold(f64::NEG_INFINITY, f64::max)
+            })
+            .map(|t| if t.is_finite() { t } else { 0.0 })
+            .collect();
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let line_ends = built
+            .line_ends
+            .iter()
+            .map(|l| {
+                [
+                    norm(out.reaction[l.anchor]),
+                    norm(out.reaction[l.fairlead]),
+                    out.tension[l.anchor_element],
+                    out.tension[l.fairlead_element],
+                ]
+            })
+            .collect();
+        SummaryRow {
+            t: state.t,
+            net_force,
+            reaction,
+            reaction_moment,
+            volume: volume + 0.0,
+            volume_ratio: if volume0 > 0.0 { volume / volume0 } else { 0.0 },
+            max_tension,
+            line_ends,
+            iterations,
+            dt,
+        }
+    }
+
+    /// Column names of `summary.csv`, in the order of [`SummaryRow::values`].
+    pub fn columns(built: &Built) -> Vec<String> {
+        let mut c: Vec<String> = [
+            "t",
+            "Fx_net",
+            "Fy_net",
+            "Fz_net",
+            "Rx",
+            "Ry",
+            "Rz",
+            "Mx",
+            "My",
+            "Mz",
+            "volume",
+            "volume_ratio",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        for g in &built.group_names {
+            c.push(format!("Tmax_{}", g.replace(',', "_")));
+        }
+        for l in &built.line_ends {
+            let n = l.name.replace(',', "_");
+            for end in [
+                "anchor_reaction",
+                "fairlead_reaction",
+                "anchor_element_tension",
+                "fairlead_element_tension",
+            ] {
+                c.push(format!("{n}_{end}"));
+            }
+        }
+        c.push("newton_iterations".into());
+        c.push("dt".into());
+        c
+    }
+
+    /// The row's values as `summary.csv` writes them (integers without a decimal point).
+    pub fn values_text(&self) -> Vec<String> {
+        let mut v: Vec<String> = self.values().iter().map(|x| x.to_string()).collect();
+        let n = v.len();
+        v[n - 2] = self.iterations.to_string();
+        v
+    }
+
+    /// The row's values in the order of [`SummaryRow::columns`].
+    pub fn values(&self) -> Vec<f64> {
+        let mut v = vec![self.t];
+        v.extend(self.net_force);
+        v.extend(self.reaction);
+        v.extend(self.reaction_moment);
+        v.push(self.volume);
+        v.push(self.volume_ratio);
+        v.extend(&self.max_tension);
+        v.extend(self.line_ends.iter().flatten());
+        v.push(self.iterations as f64);
+        v.push(self.dt);
+        v
+    }
+}

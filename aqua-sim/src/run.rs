@@ -1,0 +1,281 @@
+//! The run loop of a scene: statics and/or dynamics with any integrator, an output frame
+//! (state, outputs, wake, summary row) at every output step, and a record of how it ended.
+//!
+//! What to do with the frames (files, arrays, a progress bar) is the caller's, through an
+//! [`Observer`]; a stop request is honoured between steps and leaves every frame already
+//! delivered complete.
+
+use crate::diagnostic::Diagnostic;
+use crate::error::{Result, SimError};
+use crate::plan::Prepared;
+use crate::post::{SummaryRow, net_force_and_wake, total_volume};
+use crate::provider::WaterLoads;
+use crate::scene::AnalysisKind;
+use crate::solvers::{Stepper, start_integrator, static_equilibrium};
+use aqua_env::Phase;
+use aqua_fem::{Outputs, State, StaticControl, StaticProgress, StepReport};
+use aqua_hydro::assembly::LoadAssembly;
+use std::time::Instant;
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Ending {
+    /// Reached the end.
+    #[default]
+    Completed,
+    /// Stopped on request (Ctrl-C).
+    Interrupted,
+    /// A solve failed.
+    Failed,
+}
+
+impl Ending {
+    /// "completed", "interrupted" or "failed".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Ending::Completed => "completed",
+            Ending::Interrupted => "interrupted",
+            Ending::Failed => "failed",
+        }
+    }
+}
+
+/// Counters and timing of a run (`run.json`).
+#[derive(Debug, Clone, Default)]
+pub struct RunRecord {
+    /// Wall time of the whole run [s].
+    pub wall: f64,
+    /// Wall time of the dynamic phase [s].
+    pub dyn_wall: f64,
+    /// Dynamic steps.
+    pub steps: usize,
+    /// Newton iterations of the dynamic steps.
+    pub iterations: usize,
+    /// Newton iterations of the static solve.
+    pub static_iterations: usize,
+    /// ‖r‖/F_ref of every static Newton iterate.
+    pub static_residuals: Vec<f64>,
+    /// How it ended.
+    pub ending: Ending,
+    /// Output frames delivered.
+    pub frames: usize,
+    /// The last summary row.
+    pub last: Option<SummaryRow>,
+}
+
+/// One output step.
+#[derive(Debug)]
+pub struct Frame<'a> {
+    /// The state.
+    pub state: &'a State,
+    /// Tensions, strains, reactions, hydro forces.
+    pub outputs: &'a Outputs,
+    /// Wake factor per VTK cell (lines, then panels).
+    pub wake: &'a [f64],
+    /// The summary row.
+    pub row: &'a SummaryRow,
+}
+
+/// What the caller does with a run as it goes. Every method has a do-nothing default.
+pub trait Observer {
+    /// A diagnostic (the load models' fit ranges, the solvers' warnings).
+    fn diagnostic(&mut self, _d: &Diagnostic) {}
+    /// The static solve starts.
+    fn static_started(&mut self) {}
+    /// A static Newton iteration (load factor, iteration, residual); `stop_requested` is
+    /// polled right after, so a stop takes effect within one iteration.
+    fn static_progress(&mut self, _p: &StaticProgress) {}
+    /// The dynamic phase starts and will run to `t_end` [s].
+    fn dynamics_started(&mut self, _t_end: f64) {}
+    /// A dynamic step was accepted (`steps` so far).
+    fn step_done(&mut self, _report: &StepReport, _steps: usize) {}
+    /// An output step; an error stops the run.
+    fn frame(&mut self, _frame: &Frame<'_>) -> Result<()> {
+        Ok(())
+    }
+    /// True to stop after the current step (polled between steps).
+    fn stop_requested(&self) -> bool {
+        false
+    }
+}
+
+/// A scene ready to run: the model, its water loads and the undeformed net volume.
+#[derive(Debug)]
+pub struct Simulation<'p> {
+    prep: &'p Prepared,
+    loads: WaterLoads,
+    volume0: f64,
+    diagnostics: Vec<Diagnostic>,
+}
+
+/// The water loads of a prepared scene, and the load models' warnings.
+pub fn water_loads(prep: &Prepared, phase: Phase) -> Result<(WaterLoads, Vec<Diagnostic>)> {
+    let built = &prep.built;
+    let assembly = LoadAssembly::new(
+        built.sea.clone(),
+        built.model.n_nodes(),
+        built.elements.clone(),
+    )
+    .map_err(|e| SimError::at(prep.scene.path.display().to_string(), e))?;
+    let diagnostics = Diagnostic::warnings("hydro/model", "water loads", assembly.warnings());
+    Ok((
+        WaterLoads::new(assembly, phase, &built.elements),
+        diagnostics,
+    ))
+}
+
+impl<'p> Simulation<'p> {
+    /// Sets up the water loads of a prepared scene.
+    pub fn new(prep: &'p Prepared) -> Result<Self> {
+        let (loads, diagnostics) = water_loads(prep, Phase::Static)?;
+        let volume0 = total_volume(&prep.built, prep.built.model.nodes());
+        Ok(Self {
+            prep,
+            loads,
+            volume0,
+            diagnostics,
+        })
+    }
+
+    /// Warnings of setting up the water loads.
+    pub fn diagnostics(&self) -> &[Diagnostic] {
+        &self.diagnostics
+    }
+
+    /// Runs the plan to its end, a stop request or a failure; the record says which.
+    pub fn run(&mut self, obs: &mut dyn Observer) -> (RunRecord, Result<()>) {
+        let t0 = Instant::now();
+        let mut record = RunRecord::default();
+        let result = self.solve(obs, &mut record);
+        record.wall = t0.elapsed().as_secs_f64();
+        if result.is_err() && record.ending == Ending::Completed {
+            record.ending = Ending::Failed;
+        }
+        (record, result)
+    }
+
+    fn solve(&mut self, obs: &mut dyn Observer, record: &mut RunRecord) -> Result<()> {
+        let prep = self.prep;
+        let model = &prep.built.model;
+        let plan = &prep.plan;
+        self.loads.phase = Phase::Static;
+        let mut initial: Option<State> = None;
+        if plan.kind != AnalysisKind::Dynamic {
+            obs.static_started();
+            let mut progress = |p: &StaticProgress| {
+                obs.static_progress(p);
+                if obs.stop_requested() {
+                    StaticControl::Stop
+                } else {
+                    StaticControl::Continue
+                }
+            };
+            let stat = static_equilibrium(model, &mut self.loads, &plan.statics, &mut progress)?;
+            for d in Diagnostic::warnings("fem/statics", "statics", &stat.report.warnings) {
+                obs.diagnostic(&d);
+            }
+            record.static_iterations = stat.report.iterations;
+            record.static_residuals = stat.report.residual_history.clone();
+            self.frame(
+                obs,
+                record,
+                &stat.state,
+                &stat.outputs,
+                stat.report.iterations,
+                0.0,
+            )?;
+            if stat.report.interrupted {
+                // The last accepted (not converged) state is step 0 of the output.
+                record.ending = Ending::Interrupted;
+                return Ok(());
+            }
+            initial = Some(stat.state);
+        }
+        let Some(integrator) = &plan.dynamics else {
+            return Ok(());
+        };
+        self.loads.phase = Phase::Dynamic;
+        let t_dyn = Instant::now();
+        let result = match start_integrator(model, integrator, initial.as_ref(), &mut self.loads) {
+            Ok(mut solver) => {
+                for d in Diagnostic::warnings("fem/explicit", "dynamics", &solver.warnings()) {
+                    obs.diagnostic(&d);
+                }
+                obs.dynamics_started(plan.t_end);
+                self.drive(solver.as_mut(), obs, record, initial.is_none())
+            }
+            Err(e) => Err(e),
+        };
+        record.dyn_wall = t_dyn.elapsed().as_secs_f64();
+        result
+    }
+
+    /// Steps to the end (or a stop request), delivering every output step. A failed step
+    /// ends the loop with its error; the frames already delivered stay.
+    fn drive(
+        &mut self,
+        solver: &mut dyn Stepper,
+        obs: &mut dyn Observer,
+        record: &mut RunRecord,
+        write_initial: bool,
+    ) -> Result<()> {
+        if write_initial {
+            self.frame(obs, record, solver.state(), solver.outputs(), 0, 0.0)?;
+        }
+        while !solver.is_finished() {
+            if obs.stop_requested() {
+                record.ending = Ending::Interrupted;
+                return Ok(());
+            }
+            let report = solver
+                .step(&mut self.loads)
+                .map_err(|e| SimError::Dynamic(Box::new(e)))?;
+            record.steps += 1;
+            record.iterations += report.iterations;
+            obs.step_done(&report, record.steps);
+            if report.output_time {
+                self.frame(
+                    obs,
+                    record,
+                    solver.state(),
+                    solver.outputs(),
+                    report.iterations,
+                    report.dt,
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Post-processes a state and hands it to the observer.
+    fn frame(
+        &self,
+        obs: &mut dyn Observer,
+        record: &mut RunRecord,
+        state: &State,
+        outputs: &Outputs,
+        iterations: usize,
+        dt: f64,
+    ) -> Result<()> {
+        let built = &self.prep.built;
+        let (net_force, wake) = net_force_and_wake(built, &self.loads, state);
+        let row = SummaryRow::of_state(
+            built,
+            state,
+            outputs,
+            net_force,
+            self.volume0,
+            iterations,
+            dt,
+        );
+        obs.frame(&Frame {
+            state,
+            outputs,
+            wake: &wake,
+            row: &row,
+        })?;
+        record.frames += 1;
+        record.last = Some(row);
+        Ok(())
+    }
+}

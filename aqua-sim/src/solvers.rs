@@ -1,0 +1,93 @@
+//! The one place where aqua-sim calls aqua-fem's solvers: static equilibrium
+//! ([`static_equilibrium`]) and the time integrators behind one [`Stepper`] trait
+//! ([`start_integrator`]). The run loop and the coupling both come through here.
+
+use crate::error::{Result, SimError};
+use crate::plan::Integrator;
+use crate::provider::WaterLoads;
+use aqua_fem::{
+    DynamicSolver, ExplicitSolver, Model, Outputs, State, StaticControl, StaticProgress,
+    StaticSettings, StaticSolution, StepReport, solve_static_observed,
+};
+
+/// Static equilibrium of the model under the water loads (docs/theory/fem.md#static-solver).
+/// `progress` sees every Newton iteration and may stop the solve, which then returns the
+/// last accepted state with `report.interrupted`.
+pub fn static_equilibrium(
+    model: &Model,
+    loads: &mut WaterLoads,
+    settings: &StaticSettings,
+    progress: &mut dyn FnMut(&StaticProgress) -> StaticControl,
+) -> Result<StaticSolution> {
+    solve_static_observed(model, loads, settings, progress)
+        .map_err(|e| SimError::Static(Box::new(e)))
+}
+
+/// What the run loop needs of a time integrator (HHT-α or explicit).
+pub trait Stepper {
+    /// True once the end time is reached.
+    fn is_finished(&self) -> bool;
+    /// One step (HHT-α may halve it, both land on output times).
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport>;
+    /// The current state.
+    fn state(&self) -> &State;
+    /// Tensions, reactions, … of the current state.
+    fn outputs(&self) -> &Outputs;
+    /// Warnings of starting the integrator (a reduced explicit step, …).
+    fn warnings(&self) -> Vec<String>;
+}
+
+impl Stepper for DynamicSolver<'_> {
+    fn is_finished(&self) -> bool {
+        DynamicSolver::is_finished(self)
+    }
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport> {
+        DynamicSolver::step(self, loads)
+    }
+    fn state(&self) -> &State {
+        DynamicSolver::state(self)
+    }
+    fn outputs(&self) -> &Outputs {
+        DynamicSolver::outputs(self)
+    }
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
+}
+
+impl Stepper for ExplicitSolver<'_> {
+    fn is_finished(&self) -> bool {
+        ExplicitSolver::is_finished(self)
+    }
+    fn step(&mut self, loads: &mut WaterLoads) -> aqua_fem::Result<StepReport> {
+        ExplicitSolver::step(self, loads)
+    }
+    fn state(&self) -> &State {
+        ExplicitSolver::state(self)
+    }
+    fn outputs(&self) -> &Outputs {
+        ExplicitSolver::outputs(self)
+    }
+    fn warnings(&self) -> Vec<String> {
+        ExplicitSolver::warnings(self).to_vec()
+    }
+}
+
+/// Starts the integrator from `initial` (the static state) or from rest as built.
+pub fn start_integrator<'m>(
+    model: &'m Model,
+    integrator: &Integrator,
+    initial: Option<&State>,
+    loads: &mut WaterLoads,
+) -> Result<Box<dyn Stepper + 'm>> {
+    Ok(match integrator {
+        Integrator::Hht(s) => Box::new(
+            DynamicSolver::new(model, s.clone(), initial, loads)
+                .map_err(|e| SimError::StartDynamic("dynamic", Box::new(e)))?,
+        ),
+        Integrator::Explicit(s) => Box::new(
+            ExplicitSolver::new(model, s.clone(), initial, loads)
+                .map_err(|e| SimError::StartDynamic("explicit", Box::new(e)))?,
+        ),
+    })
+}
