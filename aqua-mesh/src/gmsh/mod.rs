@@ -6,6 +6,7 @@
 //! `fairlead`, `net_top`, `nodes:<name>` (dim 0–2). Nodes are renumbered densely in file order;
 //! nodes used by no kept element are dropped.
 
+mod check41;
 mod reader;
 
 pub use reader::{

@@ -1,6 +1,7 @@
 //! Low-level MSH readers: format detection, `$PhysicalNames`, MSH 2.2 ASCII (ours) and
 //! MSH 4.1 ASCII/binary (through `mshio`, which reads 4.1 only and skips `$PhysicalNames`).
 
+use super::check41::{Layout, check_v41};
 use crate::error::{FilePos, MeshError, Result};
 use std::path::Path;
 
@@ -83,7 +84,7 @@ pub(crate) fn unsupported_type(file: &Path, pos: FilePos, tag: u64, kind: i32) -
         file: file.to_path_buf(),
         position: pos,
         message: format!(
-            "element {tag} has type {kind} ({}), which aqua does not use; supported types: 1 \
+            "in $Elements: element {tag} has type {kind} ({}), which aqua does not use; supported types: 1 \
              (2-node line), 2 (3-node triangle), 3 (4-node quadrangle), 15 (point). Re-mesh with \
              first-order elements (Mesh.ElementOrder = 1)",
             element_type_name(kind)
@@ -217,6 +218,30 @@ impl<'a> Lines<'a> {
     fn at_end(&self) -> bool {
         self.next >= self.lines.len()
     }
+
+    /// Lines not yet taken.
+    fn remaining(&self) -> usize {
+        self.lines.len().saturating_sub(self.next)
+    }
+
+    /// Check a count of one-line items read at line `ln` against the lines left (the section
+    /// also needs its end line), so that nothing is reserved or looped over that the file
+    /// cannot hold.
+    fn check_count(&self, ln: usize, section: &str, n: usize, what: &str) -> Result<()> {
+        let left = self.remaining().saturating_sub(1);
+        if n > left {
+            return Err(gerr(
+                self.path,
+                FilePos::Line(ln),
+                format!(
+                    "in {section}: the number of {what} = {n} is more than the rest of the \
+                     file can hold ({left} lines remain before the end line, one per entry): a \
+                     corrupt count, or a truncated file?"
+                ),
+            ));
+        }
+        Ok(())
+    }
 }
 
 fn num<T: std::str::FromStr>(path: &Path, line: usize, tok: Option<&str>, what: &str) -> Result<T> {
@@ -233,19 +258,25 @@ fn num<T: std::str::FromStr>(path: &Path, line: usize, tok: Option<&str>, what: 
 /// Parse a `$PhysicalNames` body starting after its header line (shared by 2.2 and 4.1).
 fn parse_names(cur: &mut Lines<'_>) -> Result<Vec<PhysicalName>> {
     let path = cur.path;
-    let (ln, l) = cur.take("the number of physical names")?;
+    let (ln, l) = cur.take("the number of physical names in $PhysicalNames")?;
     let n: usize = num(
         path,
         ln,
         l.split_whitespace().next(),
-        "number of physical names",
+        "the number of physical names in $PhysicalNames",
     )?;
-    let mut out = Vec::with_capacity(n.min(1 << 16));
+    cur.check_count(ln, "$PhysicalNames", n, "physical names")?;
+    let mut out = Vec::with_capacity(n);
     for k in 0..n {
-        let (ln, l) = cur.take(&format!("physical name {} of {n}", k + 1))?;
+        let (ln, l) = cur.take(&format!("physical name {} of {n} in $PhysicalNames", k + 1))?;
         let mut it = l.splitn(3, char::is_whitespace);
-        let dim: i32 = num(path, ln, it.next(), "physical dimension")?;
-        let tag: i32 = num(path, ln, it.next(), "physical tag")?;
+        let dim: i32 = num(
+            path,
+            ln,
+            it.next(),
+            "a physical dimension in $PhysicalNames",
+        )?;
+        let tag: i32 = num(path, ln, it.next(), "a physical tag in $PhysicalNames")?;
         let rest = it.next().unwrap_or("").trim();
         let name = rest
             .strip_prefix('"')
@@ -254,7 +285,7 @@ fn parse_names(cur: &mut Lines<'_>) -> Result<Vec<PhysicalName>> {
                 gerr(
                     path,
                     FilePos::Line(ln),
-                    format!("physical name must be quoted, found `{rest}`"),
+                    format!("in $PhysicalNames: a physical name must be quoted, found `{rest}`"),
                 )
             })?;
         out.push(PhysicalName {
@@ -269,13 +300,13 @@ fn parse_names(cur: &mut Lines<'_>) -> Result<Vec<PhysicalName>> {
         return Err(gerr(
             path,
             FilePos::Line(ln),
-            format!("expected $EndPhysicalNames, found `{l}`"),
+            format!("expected $EndPhysicalNames after {n} physical names, found `{l}`"),
         ));
     }
     Ok(out)
 }
 
-fn nodes_per_element(kind: i32) -> Option<usize> {
+pub(crate) fn nodes_per_element(kind: i32) -> Option<usize> {
     match kind {
         1 => Some(2),
         2 => Some(3),
@@ -316,16 +347,18 @@ fn parse_v2_ascii(path: &Path, bytes: &[u8]) -> Result<RawMsh> {
             "$PhysicalNames" => names = parse_names(&mut cur)?,
             "$Nodes" => {
                 seen_nodes = true;
-                let (ln, l) = cur.take("the number of nodes")?;
-                let n: usize = num(path, ln, l.split_whitespace().next(), "number of nodes")?;
-                nodes.reserve(n.min(1 << 24));
+                let (ln, l) = cur.take("the number of nodes in $Nodes")?;
+                let what = "the number of nodes in $Nodes";
+                let n: usize = num(path, ln, l.split_whitespace().next(), what)?;
+                cur.check_count(ln, "$Nodes", n, "nodes")?;
+                nodes.reserve(n);
                 for k in 0..n {
                     let (ln, l) = cur.take(&format!("node {} of {n} in $Nodes", k + 1))?;
                     let mut it = l.split_whitespace();
-                    let tag: u64 = num(path, ln, it.next(), "node tag")?;
-                    let x: f64 = num(path, ln, it.next(), "node x")?;
-                    let y: f64 = num(path, ln, it.next(), "node y")?;
-                    let z: f64 = num(path, ln, it.next(), "node z")?;
+                    let tag: u64 = num(path, ln, it.next(), "a node tag in $Nodes")?;
+                    let x: f64 = num(path, ln, it.next(), "a node x in $Nodes")?;
+                    let y: f64 = num(path, ln, it.next(), "a node y in $Nodes")?;
+                    let z: f64 = num(path, ln, it.next(), "a node z in $Nodes")?;
                     nodes.push(RawNode { tag, x: [x, y, z] });
                 }
                 let (ln, l) = cur.take("$EndNodes")?;
@@ -339,24 +372,42 @@ fn parse_v2_ascii(path: &Path, bytes: &[u8]) -> Result<RawMsh> {
             }
             "$Elements" => {
                 seen_elements = true;
-                let (ln, l) = cur.take("the number of elements")?;
-                let n: usize = num(path, ln, l.split_whitespace().next(), "number of elements")?;
-                elements.reserve(n.min(1 << 24));
+                let (ln, l) = cur.take("the number of elements in $Elements")?;
+                let what = "the number of elements in $Elements";
+                let n: usize = num(path, ln, l.split_whitespace().next(), what)?;
+                cur.check_count(ln, "$Elements", n, "elements")?;
+                elements.reserve(n);
                 for k in 0..n {
                     let (ln, l) = cur.take(&format!("element {} of {n} in $Elements", k + 1))?;
                     let mut it = l.split_whitespace();
-                    let tag: u64 = num(path, ln, it.next(), "element tag")?;
-                    let kind: i32 = num(path, ln, it.next(), "element type")?;
-                    let ntags: usize = num(path, ln, it.next(), "number of element tags")?;
+                    let tag: u64 = num(path, ln, it.next(), "an element tag in $Elements")?;
+                    let kind: i32 = num(path, ln, it.next(), "an element type in $Elements")?;
+                    let ntags: usize = num(
+                        path,
+                        ln,
+                        it.next(),
+                        "the number of tags of an element in $Elements",
+                    )?;
+                    // Bounded by the tokens of the line: each pushes one or fails.
                     let mut tags = Vec::with_capacity(ntags.min(16));
                     for _ in 0..ntags {
-                        tags.push(num::<i32>(path, ln, it.next(), "element tag value")?);
+                        tags.push(num::<i32>(
+                            path,
+                            ln,
+                            it.next(),
+                            "an element tag value in $Elements",
+                        )?);
                     }
                     let nn = nodes_per_element(kind)
                         .ok_or_else(|| unsupported_type(path, FilePos::Line(ln), tag, kind))?;
                     let mut en = Vec::with_capacity(nn);
                     for _ in 0..nn {
-                        en.push(num::<u64>(path, ln, it.next(), "element node tag")?);
+                        en.push(num::<u64>(
+                            path,
+                            ln,
+                            it.next(),
+                            "an element node tag in $Elements",
+                        )?);
                     }
                     let physical = match tags.first() {
                         Some(&p) if p != 0 => vec![p],
@@ -417,33 +468,20 @@ fn parse_v2_ascii(path: &Path, bytes: &[u8]) -> Result<RawMsh> {
     })
 }
 
-/// Find and parse `$PhysicalNames` of a 4.1 file (ASCII even in binary files; it precedes
-/// `$Entities` and `$Nodes`).
-fn names_v41(path: &Path, bytes: &[u8]) -> Result<Vec<PhysicalName>> {
-    let find = |pat: &[u8]| bytes.windows(pat.len()).position(|w| w == pat);
-    let Some(start) = find(b"\n$PhysicalNames") else {
+/// Parse `$PhysicalNames` of a 4.1 file (ASCII even in binary files), located by the walk.
+fn names_v41(path: &Path, bytes: &[u8], layout: &Layout) -> Result<Vec<PhysicalName>> {
+    let Some(span) = layout.sections.iter().find(|s| s.name == "PhysicalNames") else {
         return Ok(Vec::new());
     };
-    if let Some(n) = find(b"\n$Nodes")
-        && n < start
-    {
-        return Ok(Vec::new());
-    }
-    // Only the text up to the next section end is needed.
-    let tail = &bytes[start + 1..];
-    let end = tail
-        .windows(b"$EndPhysicalNames".len())
-        .position(|w| w == b"$EndPhysicalNames")
-        .map_or(tail.len(), |e| e + b"$EndPhysicalNames".len());
-    let first_line = line_of(bytes, start + 1);
-    let mut cur = Lines::new(path, &tail[..end]);
+    let shift = |l: usize| l + span.line - 1;
+    let mut cur = Lines::new(path, &bytes[span.start..span.end]);
     cur.take("$PhysicalNames")?;
     parse_names(&mut cur)
         .map(|v| {
             v.into_iter()
                 .map(|mut n| {
                     if let FilePos::Line(l) = n.pos {
-                        n.pos = FilePos::Line(l + first_line - 1);
+                        n.pos = FilePos::Line(shift(l));
                     }
                     n
                 })
@@ -456,42 +494,132 @@ fn names_v41(path: &Path, bytes: &[u8]) -> Result<Vec<PhysicalName>> {
                 message,
             } => MeshError::Gmsh {
                 file,
-                position: FilePos::Line(l + first_line - 1),
+                position: FilePos::Line(shift(l)),
                 message,
             },
             e => e,
         })
 }
 
-fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
-    let names = names_v41(path, bytes)?;
-    let parsed = std::panic::catch_unwind(|| match mshio::parse_msh_bytes(bytes) {
-        Ok(m) => Ok(m),
-        Err(e) => {
-            let offset = e
-                .backtrace
-                .first()
-                .map(|(rest, _)| (rest.as_ptr() as usize).saturating_sub(bytes.as_ptr() as usize));
-            let mut ctx: Vec<String> = e.filter_msh_errors().map(|(_, k)| k.to_string()).collect();
-            ctx.reverse();
-            ctx.dedup();
-            Err((offset, ctx.join(": ")))
-        }
+/// What `mshio` returned: the file, or the byte offset of its error and its context chain.
+type MshioResult = std::result::Result<mshio::MshFile<u64, i32, f64>, (Option<usize>, String)>;
+
+fn mshio_parse(bytes: &[u8]) -> MshioResult {
+    mshio::parse_msh_bytes(bytes).map_err(|e| {
+        let offset = e
+            .backtrace
+            .first()
+            .map(|(rest, _)| (rest.as_ptr() as usize).saturating_sub(bytes.as_ptr() as usize));
+        let mut ctx: Vec<String> = e.filter_msh_errors().map(|(_, k)| k.to_string()).collect();
+        ctx.reverse();
+        ctx.dedup();
+        (offset, ctx.join(": "))
+    })
+}
+
+thread_local! {
+    /// Set while this thread runs the 4.1 reader: its panics are reported as errors, so the
+    /// panic hook stays quiet for them (other threads are not affected).
+    static QUIET_PANICS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Where the last quiet panic happened (`file:line`).
+    static PANIC_AT: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
+}
+
+/// Run `f` with panics caught and, on this thread, not printed; `Err` holds the panic message
+/// and its location.
+fn catch_quietly<T>(f: impl FnOnce() -> T) -> std::result::Result<T, String> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if QUIET_PANICS.with(|q| q.get()) {
+                let at = info
+                    .location()
+                    .map(|l| format!("{}:{}", l.file(), l.line()))
+                    .unwrap_or_default();
+                PANIC_AT.with(|p| *p.borrow_mut() = at);
+            } else {
+                previous(info);
+            }
+        }));
     });
-    let msh = match parsed {
+    let was = QUIET_PANICS.with(|q| q.replace(true));
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    QUIET_PANICS.with(|q| q.set(was));
+    r.map_err(|payload| {
+        let msg = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "(no message)".into());
+        let at = PANIC_AT.with(|p| std::mem::take(&mut *p.borrow_mut()));
+        let at = at
+            .rsplit_once("/src/")
+            .map_or(at.as_str(), |(_, a)| a)
+            .to_string();
+        if at.is_empty() {
+            msg
+        } else {
+            format!("{msg} (at {at})")
+        }
+    })
+}
+
+/// Which section makes `parse` panic: each section after `$MeshFormat` is given to it alone
+/// (with the header), in file order; the first that panics is named.
+fn panicking_section(
+    parse: fn(&[u8]) -> MshioResult,
+    bytes: &[u8],
+    layout: &Layout,
+) -> Option<usize> {
+    let header = layout.sections.first()?;
+    let head = &bytes[..header.end];
+    if catch_quietly(|| parse(head)).is_err() {
+        return Some(0);
+    }
+    (1..layout.sections.len()).find(|&i| {
+        let s = &layout.sections[i];
+        let mut one = head.to_vec();
+        one.extend_from_slice(&bytes[s.start..s.end]);
+        catch_quietly(|| parse(&one)).is_err()
+    })
+}
+
+fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
+    parse_v41_with(path, bytes, binary, mshio_parse)
+}
+
+/// [`parse_v41`] with the `mshio` call injectable (tests give it one that panics).
+fn parse_v41_with(
+    path: &Path,
+    bytes: &[u8],
+    binary: bool,
+    parse: fn(&[u8]) -> MshioResult,
+) -> Result<RawMsh> {
+    // Every count is checked against the file before mshio sees it (see check41).
+    let layout = check_v41(path, bytes, binary)?;
+    let names = names_v41(path, bytes, &layout)?;
+    let pos_of = |o: usize| {
+        if binary {
+            FilePos::Byte(o)
+        } else {
+            FilePos::Line(line_of(bytes, o))
+        }
+    };
+    let msh = match catch_quietly(|| parse(bytes)) {
         Ok(Ok(m)) => m,
         Ok(Err((offset, ctx))) => {
-            let pos = match (offset, binary) {
-                (Some(o), false) => FilePos::Line(line_of(bytes, o)),
-                (Some(o), true) => FilePos::Byte(o),
-                (None, _) => FilePos::File,
-            };
+            let pos = offset.map_or(FilePos::File, pos_of);
+            let section = offset
+                .and_then(|o| layout.section_at(o))
+                .map(|s| format!(" in ${}", s.name))
+                .unwrap_or_default();
             let at_end = offset.is_some_and(|o| o + 128 >= bytes.len());
             return Err(gerr(
                 path,
                 pos,
                 format!(
-                    "malformed MSH 4.1{}: {}",
+                    "malformed MSH 4.1{section}{}: {}",
                     if at_end {
                         " (near the end of the file: truncated?)"
                     } else {
@@ -505,12 +633,24 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
                 ),
             ));
         }
-        Err(_) => {
+        Err(panic) => {
+            let (pos, near) = match panicking_section(parse, bytes, &layout) {
+                Some(i) => {
+                    let s = &layout.sections[i];
+                    (pos_of(s.start), format!("near section ${}", s.name))
+                }
+                None => (
+                    FilePos::File,
+                    "but no single section reproduces it".to_string(),
+                ),
+            };
             return Err(gerr(
                 path,
-                FilePos::File,
-                "malformed MSH 4.1 file (the 4.1 parser gave up); check that the file is \
-                 complete or re-export it with gmsh",
+                pos,
+                format!(
+                    "the MSH 4.1 reader failed on this file: {panic}; the file is malformed \
+                     {near}. Check that it is complete or re-export it with gmsh"
+                ),
             ));
         }
     };
@@ -545,7 +685,9 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
             phys.insert((3, v.tag), v.physical_tags.clone());
         }
     }
-    let mut nodes = Vec::with_capacity(nodes_sec.num_nodes as usize);
+    // Sized by what was parsed, never by the header's totals.
+    let n_nodes = nodes_sec.node_blocks.iter().map(|b| b.nodes.len()).sum();
+    let mut nodes = Vec::with_capacity(n_nodes);
     // Non-sparse tags are not kept by mshio: they run min..=max in file order.
     let mut next_tag = nodes_sec.min_node_tag;
     for block in &nodes_sec.node_blocks {
@@ -561,9 +703,9 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
             }
             None => {
                 let t = (0..block.nodes.len() as u64)
-                    .map(|i| next_tag + i)
+                    .map(|i| next_tag.saturating_add(i))
                     .collect();
-                next_tag += block.nodes.len() as u64;
+                next_tag = next_tag.saturating_add(block.nodes.len() as u64);
                 t
             }
         };
@@ -574,7 +716,12 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
             });
         }
     }
-    let mut elements = Vec::with_capacity(elem_sec.num_elements as usize);
+    let n_elements = elem_sec
+        .element_blocks
+        .iter()
+        .map(|b| b.elements.len())
+        .sum();
+    let mut elements = Vec::with_capacity(n_elements);
     for block in &elem_sec.element_blocks {
         let kind = block.element_type as i32;
         let physical = phys
@@ -582,8 +729,14 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
             .cloned()
             .unwrap_or_default();
         for e in &block.elements {
+            // The walk recorded each element's line (ASCII) or byte offset (binary).
+            let pos = layout
+                .element_pos
+                .get(elements.len())
+                .copied()
+                .unwrap_or(FilePos::File);
             if nodes_per_element(kind).is_none() {
-                return Err(unsupported_type(path, FilePos::File, e.element_tag, kind));
+                return Err(unsupported_type(path, pos, e.element_tag, kind));
             }
             elements.push(RawElement {
                 tag: e.element_tag,
@@ -591,7 +744,7 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
                 dim: block.entity_dim,
                 nodes: e.nodes.clone(),
                 physical: physical.clone(),
-                pos: FilePos::File,
+                pos,
             });
         }
     }
@@ -602,4 +755,67 @@ fn parse_v41(path: &Path, bytes: &[u8], binary: bool) -> Result<RawMsh> {
         elements,
         names,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixture(name: &str) -> Vec<u8> {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures")
+            .join(name);
+        std::fs::read(p).unwrap()
+    }
+
+    /// A stand-in for mshio that panics on any input holding an `$Elements` section.
+    fn panics_on_elements(bytes: &[u8]) -> MshioResult {
+        if bytes.windows(10).any(|w| w == b"$Elements\n") {
+            panic!("simulated reader bug");
+        }
+        mshio_parse(bytes)
+    }
+
+    #[test]
+    fn a_reader_panic_becomes_an_error_naming_the_section() {
+        for (f, pos) in [
+            ("net_v41.msh", "line 114"),
+            ("net_v41_bin.msh", "byte offset"),
+        ] {
+            let b = fixture(f);
+            let e = parse_v41_with(Path::new(f), &b, f.contains("bin"), panics_on_elements)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("the MSH 4.1 reader failed on this file: simulated reader bug")
+                    && e.contains("near section $Elements")
+                    && e.contains(pos),
+                "{e}"
+            );
+        }
+        // The hook stays quiet only while the reader runs: the flag is reset.
+        assert!(!QUIET_PANICS.with(|q| q.get()));
+    }
+
+    #[test]
+    fn layout_of_the_fixtures() {
+        for f in ["net_v41.msh", "net_v41_bin.msh"] {
+            let b = fixture(f);
+            let l = check_v41(Path::new(f), &b, f.contains("bin")).unwrap();
+            let names: Vec<&str> = l.sections.iter().map(|s| s.name.as_str()).collect();
+            assert_eq!(
+                names,
+                [
+                    "MeshFormat",
+                    "PhysicalNames",
+                    "Entities",
+                    "Nodes",
+                    "Elements"
+                ],
+                "{f}"
+            );
+            assert_eq!(l.element_pos.len(), 38, "{f}");
+            assert_eq!(l.sections.last().unwrap().end, b.len(), "{f}");
+        }
+    }
 }
