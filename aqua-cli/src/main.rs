@@ -28,7 +28,26 @@ enum Command {
     Coeffs(commands::coeffs::Args),
 }
 
+/// A reader that closed the pipe (`aqua check scene.toml | head`) is not an error of ours:
+/// `print!` panics on EPIPE, so such a panic ends the process quietly with status 0.
+fn quiet_on_broken_pipe() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let msg = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if msg.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default_hook(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_broken_pipe();
     let cli = Cli::parse();
     // Ctrl-C asks the run to stop after the current step; its outputs stay consistent.
     if ctrlc::set_handler(aqua_cli::request_stop).is_err() {

@@ -429,3 +429,25 @@ fn check_warns_about_a_line_end_held_by_nothing() {
     assert_eq!(code, 0);
     assert!(!format!("{stdout}{stderr}").contains("neither fixed"));
 }
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    // `aqua check scene.toml | head`: the reader goes away; no panic, no backtrace, status 0.
+    for args in [
+        vec!["check", "examples/moored-cage.toml"],
+        vec!["coeffs", "--model", "all"],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_aqua"))
+            .args(&args)
+            .current_dir(root())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
