@@ -37,7 +37,13 @@ pub struct Cost {
     pub steps: usize,
     /// Output steps.
     pub output_steps: usize,
-    /// Rough wall-time estimate [s] (measured constants of this code on a 2-core machine).
+    /// Estimated static solve [s]: the expected iterations (100 + 0.4 per free DOF; 1 when
+    /// nothing is free) at 3 units of Newton work each (factorisation + Jacobian).
+    pub estimated_static_seconds: f64,
+    /// Estimated dynamics [s]: ~3 Newton iterations per nominal step.
+    pub estimated_dynamic_seconds: f64,
+    /// Rough wall-time estimate [s], the sum of the two (measured constants of this code on a
+    /// 2-core machine; within 3× of the bundled examples' measured wall times).
     pub estimated_seconds: f64,
 }
 
@@ -201,23 +207,37 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let kind = prep.plan.kind;
     let dynamic = kind != AnalysisKind::Static;
     let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
-    let free = built.model.n_nodes() * 3;
+    let model = &built.model;
+    let free = (0..model.n_nodes())
+        .map(|i| (0..3).filter(|&k| !model.is_constrained(i, k)).count())
+        .sum::<usize>();
     let steps = if dynamic {
         (t_end / dt).ceil() as usize
     } else {
         0
     };
-    // Measured on the reference cage (2 cores): ~3 Newton iterations per step, each costing about
-    // 1.2 µs per cable element + 0.6 µs per load element + 25 ns per wave component and node.
+    // Calibrated separately on the bundled examples (release build, 2 cores; figures in
+    // docs/theory/fem.md#static-solver). One Newton iteration of the structure costs about
+    // 1.2 µs per cable element + 0.6 µs per load element, plus, in dynamics only, 200 ns per
+    // wave component and node (the static phase sees the current alone).
     let per_iter = 1.2e-6 * built.model.elements().len() as f64
-        + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64
-        + 25e-9 * (ncomp * built.model.n_nodes()) as f64;
-    let estimated = per_iter * 3.0 * steps.max(1) as f64
-        + if kind != AnalysisKind::Dynamic {
-            per_iter * 40.0
-        } else {
-            0.0
-        };
+        + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64;
+    let per_iter_dynamic = per_iter + 200e-9 * (ncomp * built.model.n_nodes()) as f64;
+    // Statics: the iterations grow with the free DOFs (reference cage 1215 for 3027, moored
+    // cage 1062 for 1143, mooring chain 245 for 237, 10 m cage 138 for ~250), each about four
+    // times this unit (factorisation and Jacobian every iteration).
+    let static_iterations = if free == 0 {
+        1.0
+    } else {
+        100.0 + 0.4 * free as f64
+    };
+    let estimated_static = if kind != AnalysisKind::Dynamic {
+        4.0 * per_iter * static_iterations
+    } else {
+        0.0
+    };
+    // Dynamics: ~3 Newton iterations per nominal step.
+    let estimated_dynamic = per_iter_dynamic * 3.0 * steps as f64;
     Cost {
         dofs: free,
         cable_elements: built.model.elements().len(),
@@ -229,6 +249,8 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         } else {
             1
         },
-        estimated_seconds: estimated,
+        estimated_static_seconds: estimated_static,
+        estimated_dynamic_seconds: estimated_dynamic,
+        estimated_seconds: estimated_static + estimated_dynamic,
     }
 }
