@@ -108,7 +108,13 @@ impl Scene {
     #[pyo3(signature = (out = None))]
     fn run(&self, py: Python<'_>, out: Option<PathBuf>) -> PyResult<Results> {
         let scene = self.inner.clone();
-        py.detach(|| run_scene(scene, out)).map_err(err)
+        py.detach(|| run_scene(scene, out))
+            .map_err(err)?
+            .ok_or_else(|| {
+                pyo3::exceptions::PyKeyboardInterrupt::new_err(
+                    "run interrupted; the output steps written so far are kept",
+                )
+            })
     }
 
     fn __repr__(&self) -> String {
@@ -135,9 +141,16 @@ impl Observer for Collect<'_> {
         self.tensions.extend(&f.outputs.tension);
         Ok(())
     }
+
+    /// Ctrl-C in Python stops the run after the current step (`run` then raises
+    /// KeyboardInterrupt).
+    fn stop_requested(&self) -> bool {
+        Python::attach(|py| py.check_signals().is_err())
+    }
 }
 
-fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<Results> {
+/// Runs a scene; `None` when Ctrl-C stopped it.
+fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<Option<Results>> {
     let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)?;
     let mut sim = aqua_sim::Simulation::new(&prep)?;
     let files = match &out {
@@ -153,7 +166,10 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<R
     };
     let (record, result) = sim.run(&mut c);
     result?;
-    Ok(Results {
+    if record.ending == aqua_sim::Ending::Interrupted {
+        return Ok(None);
+    }
+    Ok(Some(Results {
         columns: aqua_sim::SummaryRow::columns(&prep.built),
         rows: c.rows,
         positions: c.positions,
@@ -161,7 +177,7 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<R
         n_nodes: prep.built.model.n_nodes(),
         n_elements: prep.built.model.elements().len(),
         status: record.ending.as_str().to_string(),
-    })
+    }))
 }
 
 /// The output steps of a run.

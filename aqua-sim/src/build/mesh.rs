@@ -75,43 +75,72 @@ pub(crate) fn default_name(given: &Option<String>, kind: &str, i: usize) -> Stri
     given.clone().unwrap_or_else(|| format!("{kind}{i}"))
 }
 
-/// Builds the merged mesh of a scene.
-pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
-    let file = scene.path.display().to_string();
-    let seabed_z = scene.sea.depth.as_ref().and_then(|_| {
-        scene
-            .sea
-            .constants()
-            .ok()
-            .and_then(|c| c.depth.finite())
-            .map(|h| -h)
-    });
-    let mut mesh = Mesh::default();
-    let mut nets: HashMap<String, NetHydro> = HashMap::new();
-    let mut names: BTreeMap<String, usize> = BTreeMap::new();
-    let mut check_name = |name: &str, line: usize| -> Result<()> {
-        if let Some(prev) = names.insert(name.to_string(), line) {
+/// The mesh being merged, with the names given so far.
+struct Merge {
+    file: String,
+    mesh: Mesh,
+    nets: HashMap<String, NetHydro>,
+    names: BTreeMap<String, usize>,
+}
+
+impl Merge {
+    /// The object's name (given or `<kind><i>`), unique in the scene.
+    fn name(
+        &mut self,
+        given: &Option<String>,
+        kind: &str,
+        i: usize,
+        line: usize,
+    ) -> Result<String> {
+        let name = default_name(given, kind, i);
+        if let Some(prev) = self.names.insert(name.clone(), line) {
             return Err(input(format!(
-                "{file}: line {line}: object name \"{name}\" is already used by the object at line {prev}; give each object a unique name"
+                "{}: line {line}: object name \"{name}\" is already used by the object at line {prev}; give each object a unique name",
+                self.file
             )));
         }
+        Ok(name)
+    }
+
+    /// Appends the mesh built for object #i of `section` (header at `line`).
+    fn append(
+        &mut self,
+        section: &str,
+        i: usize,
+        line: usize,
+        built: std::result::Result<Mesh, aqua_mesh::MeshError>,
+    ) -> Result<()> {
+        let m = built.map_err(|e| {
+            SimError::at(
+                format!("{}: line {line}: [[{section}]] #{}", self.file, i + 1),
+                e,
+            )
+        })?;
+        self.mesh.append(m);
         Ok(())
+    }
+}
+
+/// Builds the merged mesh of a scene: cages, panels, gmsh meshes, then lines (whose fairlead
+/// may name a node of the others).
+pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
+    let file = scene.path.display().to_string();
+    let mut m = Merge {
+        file: file.clone(),
+        mesh: Mesh::default(),
+        nets: HashMap::new(),
+        names: BTreeMap::new(),
     };
     for (i, c) in scene.cage.iter().enumerate() {
         let mut p = c.value.params.clone();
-        let name = default_name(&p.name, "cage", i);
-        check_name(&name, c.line)?;
+        let name = m.name(&p.name, "cage", i, c.line)?;
         p.name = Some(name.clone());
-        let m = p.build().map_err(|e| {
-            SimError::at(format!("{file}: line {}: [[cage]] #{}", c.line, i + 1), e)
-        })?;
-        mesh.append(m);
-        nets.insert(name, c.value.net_hydro.clone());
+        m.append("cage", i, c.line, p.build())?;
+        m.nets.insert(name, c.value.net_hydro.clone());
     }
     for (i, c) in scene.panel.iter().enumerate() {
         let mut p = c.value.params.clone();
-        let name = default_name(&p.name, "panel", i);
-        check_name(&name, c.line)?;
+        let name = m.name(&p.name, "panel", i, c.line)?;
         p.name = Some(name.clone());
         if let Some(w) = &c.value.net_hydro.wake
             && w.model != WakeModelId::None
@@ -123,64 +152,72 @@ pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
                 w.model
             )));
         }
-        let m = p.build().map_err(|e| {
-            SimError::at(format!("{file}: line {}: [[panel]] #{}", c.line, i + 1), e)
-        })?;
-        mesh.append(m);
-        nets.insert(name, c.value.net_hydro.clone());
+        m.append("panel", i, c.line, p.build())?;
+        m.nets.insert(name, c.value.net_hydro.clone());
     }
     for (i, c) in scene.mesh.iter().enumerate() {
         let mut p = c.value.params.clone();
-        let name = default_name(&p.name, "mesh", i);
-        check_name(&name, c.line)?;
+        let name = m.name(&p.name, "mesh", i, c.line)?;
         p.name = Some(name.clone());
-        let m = aqua_mesh::import_gmsh(&p).map_err(|e| {
-            SimError::at(format!("{file}: line {}: [[mesh]] #{}", c.line, i + 1), e)
-        })?;
-        mesh.append(m);
-        nets.insert(name, c.value.net_hydro.clone());
+        m.append("mesh", i, c.line, aqua_mesh::import_gmsh(&p))?;
+        m.nets.insert(name, c.value.net_hydro.clone());
     }
     for (i, c) in scene.line.iter().enumerate() {
-        let mut p = c.value.params.clone();
-        let name = default_name(&p.name, "line", i);
-        check_name(&name, c.line)?;
-        p.name = Some(name.clone());
-        let mut weld_to = None;
-        let mut fair_pos = None;
-        if let Some(Fairlead::Node(r)) = &p.fairlead {
-            let nodes = resolve_ref(&mesh, r).ok_or_else(|| {
-                input(format!(
-                    "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names no node; use \"object/group[k]\" with one of: {}",
-                    c.line,
-                    i + 1,
-                    group_names_hint(&mesh)
-                ))
-            })?;
-            if nodes.len() != 1 {
-                return Err(input(format!(
-                    "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names {} nodes; pick one with [k], e.g. \"{r}[0]\"",
-                    c.line,
-                    i + 1,
-                    nodes.len()
-                )));
-            }
-            let n = nodes[0];
-            let x = mesh.nodes[n];
-            fair_pos = Some([x.x, x.y, x.z]);
-            weld_to = Some(n);
-        }
-        let m = p.build_with(fair_pos, seabed_z).map_err(|e| {
-            SimError::at(format!("{file}: line {}: [[line]] #{}", c.line, i + 1), e)
-        })?;
-        mesh.append(m);
-        if let Some(target) = weld_to {
-            weld_last_node(&mut mesh, target);
-        }
+        add_line(scene, &mut m, i, c)?;
     }
-    if mesh.nodes.is_empty() {
+    if m.mesh.nodes.is_empty() {
         return Err(input(format!(
             "{file}: the scene has no structure: add a [[cage]], [[panel]], [[line]] or [[mesh]]"
         )));
     }
-    Ok((mesh, nets))
+    Ok((m.mesh, m.nets))
+}
+
+/// Appends a `[[line]]`; a fairlead that names a node is welded to it.
+fn add_line(
+    scene: &Scene,
+    m: &mut Merge,
+    i: usize,
+    c: &crate::scene::Located<crate::scene::LineSpec>,
+) -> Result<()> {
+    let file = m.file.clone();
+    let seabed_z = scene.sea.depth.as_ref().and_then(|_| {
+        scene
+            .sea
+            .constants()
+            .ok()
+            .and_then(|c| c.depth.finite())
+            .map(|h| -h)
+    });
+    let mut p = c.value.params.clone();
+    p.name = Some(m.name(&p.name, "line", i, c.line)?);
+    let mut weld_to = None;
+    let mut fair_pos = None;
+    if let Some(Fairlead::Node(r)) = &p.fairlead {
+        let nodes = resolve_ref(&m.mesh, r).ok_or_else(|| {
+            input(format!(
+                "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names no node; use \"object/group[k]\" with one of: {}",
+                c.line,
+                i + 1,
+                group_names_hint(&m.mesh)
+            ))
+        })?;
+        if nodes.len() != 1 {
+            return Err(input(format!(
+                "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names {} nodes; pick one with [k], e.g. \"{r}[0]\"",
+                c.line,
+                i + 1,
+                nodes.len()
+            )));
+        }
+        let n = nodes[0];
+        let x = m.mesh.nodes[n];
+        fair_pos = Some([x.x, x.y, x.z]);
+        weld_to = Some(n);
+    }
+    m.append("line", i, c.line, p.build_with(fair_pos, seabed_z))?;
+    if let Some(target) = weld_to {
+        weld_last_node(&mut m.mesh, target);
+    }
+    Ok(())
 }

@@ -214,6 +214,16 @@ fn add_cables(
     Ok(())
 }
 
+/// The nodes of a node group reference of the scene entry `at`.
+fn node_group(mesh: &Mesh, at: &str, reference: &str) -> Result<Vec<usize>> {
+    resolve_ref(mesh, reference).ok_or_else(|| {
+        SimError::input(format!(
+            "{at}: nodes = \"{reference}\" names no node group; valid: {}",
+            group_names_hint(mesh)
+        ))
+    })
+}
+
 /// `[[point]]` bodies: mass, force and seabed stiffness go to the structure; volume and drag
 /// area to the water loads (returned).
 fn point_bodies(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<Vec<PointElement>> {
@@ -221,13 +231,7 @@ fn point_bodies(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<Vec<
     let mut hydro_points = Vec::new();
     for (i, p) in scene.point.iter().enumerate() {
         let at = format!("{file}: line {}: [[point]] #{}", p.line, i + 1);
-        let nodes = resolve_ref(mesh, &p.value.nodes).ok_or_else(|| {
-            SimError::input(format!(
-                "{at}: nodes = \"{}\" names no node group; valid: {}",
-                p.value.nodes,
-                group_names_hint(mesh)
-            ))
-        })?;
+        let nodes = node_group(mesh, &at, &p.value.nodes)?;
         let v = &p.value;
         for n in nodes {
             if v.mass > 0.0 || v.force != [0.0; 3] || v.seabed_stiffness > 0.0 {
@@ -266,13 +270,7 @@ fn fixed_nodes(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<BTree
     }
     for (i, f) in scene.fix.iter().enumerate() {
         let at = format!("{file}: line {}: [[fix]] #{}", f.line, i + 1);
-        let nodes = resolve_ref(mesh, &f.value.nodes).ok_or_else(|| {
-            SimError::input(format!(
-                "{at}: nodes = \"{}\" names no node group; valid: {}",
-                f.value.nodes,
-                group_names_hint(mesh)
-            ))
-        })?;
+        let nodes = node_group(mesh, &at, &f.value.nodes)?;
         let has = |d: &str| f.value.dofs.iter().any(|x| x == d);
         let dofs = Dofs {
             x: has("x"),
@@ -300,13 +298,7 @@ fn prescribed_motions(
     let mut external = Vec::new();
     for (i, p) in scene.prescribed.iter().enumerate() {
         let at = format!("{file}: line {}: [[prescribed]] #{}", p.line, i + 1);
-        let nodes = resolve_ref(mesh, &p.value.nodes).ok_or_else(|| {
-            SimError::input(format!(
-                "{at}: nodes = \"{}\" names no node group; valid: {}",
-                p.value.nodes,
-                group_names_hint(mesh)
-            ))
-        })?;
+        let nodes = node_group(mesh, &at, &p.value.nodes)?;
         // The scene's motion is validated even when a coupling drives the nodes.
         let m = motion(&p.value).map_err(|e| match e {
             MotionError::Missing(msg) => SimError::input(format!("{at}: {msg}")),
