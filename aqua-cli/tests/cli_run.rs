@@ -103,7 +103,7 @@ fn every_example_checks() {
     assert_eq!(
         m["nodes"].as_u64(),
         Some(1057),
-        "the spec's worked SSM case"
+        "the worked SSM case of docs/theory/cages.md#worked-ssm-case"
     );
     let waves = v["physics"]
         .as_array()

@@ -1,4 +1,5 @@
-//! `aqua waves` end to end: summary numbers against the spec's worked values, CSV layout,
+//! `aqua waves` end to end: summary numbers against the worked values of
+//! docs/theory/environment.md, CSV layout,
 //! JSON, and bad input (exit code 2 with the key named).
 
 use std::process::Command;

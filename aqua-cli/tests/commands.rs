@@ -116,7 +116,7 @@ mod coeffs {
         assert!(r.morison.is_none());
         let rows = &sc.models[0].rows;
         assert_eq!(rows.len(), 4);
-        // spec §8, Sn = 0.2
+        // docs/theory/hydrodynamics.md#screen-coefficient-values, Sn = 0.2
         assert!((rows[1].cd - 0.2305255888).abs() < 5e-11);
         assert!((rows[1].cl - 0.0460725515).abs() < 5e-11);
         assert!((rows[3].cd - 0.04).abs() < 1e-12);

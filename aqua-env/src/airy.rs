@@ -1,4 +1,4 @@
-//! Linear (Airy) wave components and their sum (environment spec §5, §7.5).
+//! Linear (Airy) wave components and their sum (docs/theory/environment.md#airy-waves, #summation).
 //!
 //! A component i has amplitude a_i, angular frequency ω_i, wave number k_i, travel direction β_i
 //! and phase φ_i; with θ_i = k_i(x cos β_i + y sin β_i) − ω_i t + φ_i:

@@ -1,5 +1,5 @@
-//! The `[sea]` table of a scene (environment spec §1): serde types with the binding key names,
-//! validation with messages that name key, value and valid range, and construction of a
+//! The `[sea]` table of a scene (top-level README.md#scene-sea-table): serde types with the binding
+//! key names, validation with messages that name key, value and valid range, and construction of a
 //! [`Sea`] with its printed summary and warnings.
 
 use crate::airy::{Component, LinearSum};
@@ -81,7 +81,8 @@ impl Default for SeaSpec {
     }
 }
 
-/// `[sea.seabed]` (fem spec §8): penalty pressure per metre of penetration and per m/s.
+/// `[sea.seabed]` (docs/theory/fem.md#seabed-contact): penalty pressure per metre of penetration
+/// and per m/s.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SeabedSpec {
@@ -336,7 +337,8 @@ fn default_spacing() -> Spacing {
 }
 
 impl Default for SpectrumSpec {
-    /// JONSWAP with automatic γ and the spec's defaults; hs and tp still have to be given.
+    /// JONSWAP with automatic γ and the defaults of docs/theory/environment.md#wave-spectra; hs and
+    /// tp still have to be given.
     fn default() -> Self {
         Self {
             shape: SpectrumShape::Jonswap,

@@ -1,4 +1,4 @@
-//! Fluid constants and water depth (environment spec §2).
+//! Fluid constants and water depth (docs/theory/environment.md#fluid-constants).
 
 use serde::Serialize;
 

@@ -1,5 +1,5 @@
 //! Current: uniform, piecewise-linear depth profile, power law, start-up ramp and velocity
-//! schedule (environment spec §4).
+//! schedule (docs/theory/environment.md#current).
 
 use crate::error::EnvError;
 use crate::ramp::Ramp;

@@ -1,4 +1,5 @@
-//! The linear dispersion relation ω² = g·k·tanh(k·h), solved exactly (environment spec §5.1).
+//! The linear dispersion relation ω² = g·k·tanh(k·h), solved exactly
+//! (docs/theory/environment.md#dispersion-relation).
 
 use crate::constants::Depth;
 use crate::error::EnvError;

@@ -1,4 +1,6 @@
-//! Discretising a spectrum into Airy components (environment spec §7.3–7.4).
+//! Discretising a spectrum into Airy components
+//! (docs/theory/environment.md#choosing-the-frequency-band, #frequency-spacing,
+//! #phases-and-directions).
 //!
 //! 1. Band [ω_lo, ω_hi] from an energy cut-off on the spectrum weighted by
 //!    G(ω)² = C(z_ref)²/C(0)² (C from `airy`), on a fine trapezoid grid.

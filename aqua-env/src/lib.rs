@@ -1,5 +1,5 @@
-//! aqua-env — the sea: fluid constants, current and waves (specification:
-//! `shared/spec/environment.md`).
+//! aqua-env — the sea: fluid constants, current and waves (theory:
+//! `docs/theory/environment.md`).
 //!
 //! Conventions: SI units, z up, z = 0 at still water, seabed at z = −h; directions β in radians
 //! (degrees only in scene files), measured from +x towards +y, pointing where waves travel.

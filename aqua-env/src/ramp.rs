@@ -1,4 +1,4 @@
-//! The C¹-smooth start-up ramp (environment spec §4.4).
+//! The C¹-smooth start-up ramp (docs/theory/environment.md#start-up-ramp).
 
 use std::f64::consts::PI;
 

@@ -1,5 +1,5 @@
 //! SplitMix64: the in-house seeded generator that makes every irregular sea reproducible on
-//! any machine and crate version (environment spec §7.4).
+//! any machine and crate version (docs/theory/environment.md#seeded-random-numbers).
 
 /// SplitMix64 (Steele, Lea & Flood 2014): state += 0x9E3779B97F4A7C15; mix; output.
 #[derive(Debug, Clone)]

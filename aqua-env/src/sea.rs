@@ -1,5 +1,5 @@
 //! The sea a structure sits in: constants, current and waves, evaluated at many points at one
-//! time (environment spec §3).
+//! time (docs/theory/environment.md#flow-at-a-point).
 
 use crate::airy::{LinearSum, RawKinematics};
 use crate::constants::{Constants, Depth};
@@ -148,7 +148,8 @@ impl Sea {
     }
 
     /// Use the current's start-up ramp in dynamics: for runs that do not start from a static
-    /// state which already contains the current (environment spec §4.4).
+    /// state which already contains the current
+    /// (docs/theory/environment.md#when-the-current-ramps).
     pub fn with_current_ramp(mut self, on: bool) -> Self {
         self.current_ramp = on;
         self

@@ -1,4 +1,5 @@
-//! Wave spectra S(ω) [m²·s/rad] (environment spec §7.1, DNV-RP-C205 §3.5.5).
+//! Wave spectra S(ω) [m²·s/rad] (docs/theory/environment.md#wave-spectra,
+//! DNV-RP-C205 §3.5.5).
 //!
 //! Pierson–Moskowitz: S_PM(ω) = (5/16) Hs² ω_p⁴ ω⁻⁵ exp(−(5/4)(ω/ω_p)⁻⁴);
 //! JONSWAP: S_J(ω) = (1 − 0.287 ln γ) S_PM(ω) γ^{exp(−(ω−ω_p)²/(2σ²ω_p²))},

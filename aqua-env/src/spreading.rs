@@ -1,4 +1,4 @@
-//! Directional spreading, cos-2s (environment spec §7.2):
+//! Directional spreading, cos-2s (docs/theory/environment.md#directional-spreading):
 //! D(Δβ) = Γ(s+1)/(2√π Γ(s+½))·cos^{2s}(Δβ/2), −π < Δβ ≤ π, ∫D dΔβ = 1.
 
 use std::f64::consts::PI;

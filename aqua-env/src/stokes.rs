@@ -1,4 +1,5 @@
-//! Stokes second-order regular wave (environment spec §6; Dean & Dalrymple ch. 11).
+//! Stokes second-order regular wave (docs/theory/environment.md#stokes-second-order-waves; Dean &
+//! Dalrymple ch. 11).
 //!
 //! With E = e^{−2kh}:
 //! η = a cos θ + (k a²/4) B_η cos 2θ, B_η = cosh kh (2 + cosh 2kh)/sinh³ kh;

@@ -1,5 +1,5 @@
 //! Kinematics in the surface region: where linear wave kinematics are evaluated for a point
-//! under the instantaneous surface (environment spec §8).
+//! under the instantaneous surface (docs/theory/environment.md#surface-stretching).
 
 use crate::constants::Depth;
 use serde::{Deserialize, Serialize};

@@ -1,5 +1,6 @@
-//! Behavioural checks of environment.md §9 against independent numbers: conservation
-//! (divergence-free, irrotational), statistics of generated records, reproducibility.
+//! Behavioural checks of docs/theory/environment.md#tests-and-worked-numbers against independent
+//! numbers: conservation (divergence-free, irrotational), statistics of generated records,
+//! reproducibility.
 
 use aqua_env::record::{significant_height, variance, welch};
 use aqua_env::{BuildOptions, Phase, Sea, SeaSpec, SeaSummary, Spectrum};

@@ -1,4 +1,5 @@
-//! The 2-node cable element: axial force, tangent blocks, strain energy (fem.md §3).
+//! The 2-node cable element: axial force, tangent blocks, strain energy
+//! (docs/theory/fem.md#cable-element).
 
 use crate::model::Cable;
 

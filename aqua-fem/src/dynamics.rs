@@ -1,4 +1,5 @@
-//! Implicit dynamics: HHT-α with Newton every step and adaptive step halving (fem.md §10–11).
+//! Implicit dynamics: HHT-α with Newton every step and adaptive step halving
+//! (docs/theory/fem.md#hht-alpha, #step-control).
 
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;
@@ -43,10 +44,10 @@ pub struct DynamicSettings {
     /// Form missing water-load position derivatives by finite differences. Default false
     /// (the provider's ∂f/∂x is used when given; ∂f/∂v is always formed).
     pub fd_position_jacobian: bool,
-    /// Modified Newton (fem.md §13): a numeric factorisation serves up to this many Newton
-    /// iterations, also across steps of equal Δt, while every iteration with a reused
-    /// factorisation reduces ‖r‖ at least 2× (otherwise J is re-formed at the current
-    /// iterate). 1 (default) = full Newton, a factorisation every iteration.
+    /// Modified Newton (docs/theory/fem.md#hht-alpha): a numeric factorisation serves up to this
+    /// many Newton iterations, also across steps of equal Δt, while every iteration with a reused
+    /// factorisation reduces ‖r‖ at least 2× (otherwise J is re-formed at the current iterate). 1
+    /// (default) = full Newton, a factorisation every iteration.
     #[serde(default = "one")]
     pub reuse_factor: usize,
 }

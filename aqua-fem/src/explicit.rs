@@ -1,5 +1,5 @@
 //! Explicit lumped mass-spring integrator: semi-implicit Euler or RK4 with an automatic
-//! stable step (fem.md §12).
+//! stable step (docs/theory/fem.md#explicit-schemes).
 
 use crate::dynamics::{Energies, StepReport};
 use crate::error::{FemError, Result, invalid};

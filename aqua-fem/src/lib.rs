@@ -4,7 +4,7 @@
 //! per node (large displacements, no bending), point bodies on nodes, fixed and prescribed
 //! nodes, and a penalty seabed. Water loads (drag, lift, inertia, buoyancy, added mass) come
 //! from a [`LoadProvider`]; this crate knows only gravity, elasticity, point masses and the
-//! seabed (spec `fem.md`).
+//! seabed (theory: `docs/theory/fem.md`).
 //!
 //! ## Governing equations (SI, z up, z = 0 still water)
 //!
@@ -43,7 +43,7 @@
 //! symbolic analysis once per solver, numeric factorisation every Newton iteration) is used
 //! because water-load Jacobians (lift, ∂f/∂x, Reynolds terms) and the damping term of the
 //! cable tangent are not symmetric, and the compressed geometric term makes K indefinite
-//! (spec `fem.md` §13).
+//! (docs/theory/fem.md#sparse-linear-algebra).
 //!
 //! ## Use
 //! ```

@@ -1,4 +1,5 @@
-//! The load-provider trait: everything the water does arrives through it (fem.md §6.4).
+//! The load-provider trait: everything the water does arrives through it
+//! (docs/theory/fem.md#loads).
 
 use crate::error::LoadError;
 

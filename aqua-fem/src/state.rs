@@ -1,4 +1,4 @@
-//! Solver state and per-step outputs (fem.md §14).
+//! Solver state and per-step outputs (docs/theory/fem.md#outputs).
 
 use crate::cable;
 use crate::model::Model;

@@ -1,5 +1,5 @@
 //! Static equilibrium: Newton with load continuation, pseudo-viscous stabilisation and line
-//! search (fem.md §9).
+//! search (docs/theory/fem.md#static-solver).
 
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;

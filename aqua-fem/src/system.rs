@@ -1,5 +1,6 @@
 //! Global system: DOF numbering, sparse pattern (built once), assembly of residual and
-//! Jacobian, and the sparse LU with its symbolic factorisation reused (fem.md §13).
+//! Jacobian, and the sparse LU with its symbolic factorisation reused
+//! (docs/theory/fem.md#sparse-linear-algebra).
 
 use crate::cable::{self, CableEval};
 use crate::error::{FemError, Result};

@@ -1,5 +1,5 @@
-//! Dynamic oracles (fem.md §16): HHT-α spectral properties, energy conservation, taut-string
-//! frequency, explicit vs implicit, slack round trip, failure handling.
+//! Dynamic oracles (docs/theory/fem.md#test-oracles): HHT-α spectral properties, energy
+//! conservation, taut-string frequency, explicit vs implicit, slack round trip, failure handling.
 
 mod common;
 use aqua_fem::*;
@@ -211,8 +211,8 @@ fn taut_string_first_frequency() {
     // Mode shape offset 1e-4·L.
     let mut init = State::as_built(&m, 0.0);
     for i in 0..=n {
-        // 1e-5·L rather than the spec's 1e-4·L: with EA = 1e8 the second-order stretch at 1e-4·L
-        // raises the tension by ~0.25 % and the frequency by ~0.1 %.
+        // 1e-5·L rather than 1e-4·L (docs/theory/fem.md#taut-string): with EA = 1e8 the
+        // second-order stretch at 1e-4·L raises the tension by ~0.25 % and the frequency by ~0.1 %.
         init.x[nodes[i]][1] = 1e-5 * l * (PI * i as f64 / n as f64).sin();
     }
     let dt = 1.0 / (200.0 * f1);
@@ -442,9 +442,9 @@ fn consistent_mass_and_water_loads_run() {
     assert!(d < 0.05, "{:?} vs {:?}", ends[0], ends[1]);
 }
 
-/// Modified Newton (`reuse_factor`, fem.md §13) converges to the same discrete solution as
-/// full Newton: each step meets the same residual and correction tolerances, so the swinging
-/// tip agrees to well within 1e-3 of the chain length; `reuse_factor = 0` is rejected.
+/// Modified Newton (`reuse_factor`, docs/theory/fem.md#hht-alpha) converges to the same discrete
+/// solution as full Newton: each step meets the same residual and correction tolerances, so the
+/// swinging tip agrees to well within 1e-3 of the chain length; `reuse_factor = 0` is rejected.
 #[test]
 fn modified_newton_matches_full_newton() {
     let (m, tip) = swinging_chain();

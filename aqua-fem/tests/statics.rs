@@ -1,4 +1,5 @@
-//! Static oracles (fem.md §16): axial bar, elastic catenary, touchdown, Newton order, errors.
+//! Static oracles (docs/theory/fem.md#test-oracles): axial bar, elastic catenary, touchdown, Newton
+//! order, errors.
 
 mod common;
 use aqua_fem::*;
@@ -346,7 +347,8 @@ fn bad_input_is_a_clear_error() {
     assert!(b3.build().is_err());
 }
 
-/// Newton iterations of the static solve of the spec's level catenary (n = 40 elements).
+/// Newton iterations of the static solve of the level catenary of
+/// docs/theory/fem.md#elastic-catenary (n = 40 elements).
 fn catenary_iterations(sag0: f64) -> usize {
     let w = 10.0;
     let mut b = ModelBuilder::new(env_air());
@@ -436,9 +438,10 @@ fn discrete_catenary(
 
 #[test]
 fn discrete_catenary_to_round_off_for_any_axial_stiffness() {
-    // The spec's level catenary (l = 100 m, L0 = 105 m, w = 10 N/m) with EA from 1e4 to 1e10 N
-    // at tol = 1e-12: positions within 1e-9 of the span of the independent discrete solution,
-    // and the horizontal tension within 1e-9 or the round-off of EA·Δl/L0, whichever is larger.
+    // The level catenary of docs/theory/fem.md#elastic-catenary (l = 100 m, L0 = 105 m, w = 10 N/m)
+    // with EA from 1e4 to 1e10 N at tol = 1e-12: positions within 1e-9 of the span of the
+    // independent discrete solution, and the horizontal tension within 1e-9 or the round-off of
+    // EA·Δl/L0, whichever is larger.
     let (n, l, l0, w) = (20usize, 100.0, 105.0, 10.0);
     for ea in [1e4, 1e6, 1e8, 1e10] {
         let (hh, _v0, pts) = discrete_catenary(n, l, 0.0, l0, w, ea);

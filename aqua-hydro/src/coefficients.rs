@@ -1,6 +1,7 @@
 //! Coefficient tables of the load models: screen-model C_D, C_L against the inflow angle and
-//! Morison C_n, C_t against the Reynolds number (hydrodynamics.md §1, §4.5, §5.2), for
-//! comparing and choosing models (`aqua coeffs`).
+//! Morison C_n, C_t against the Reynolds number
+//! (docs/theory/hydrodynamics.md#screen-models, #morison-coefficients), for comparing
+//! and choosing models (`aqua coeffs`).
 
 use crate::error::HydroError;
 use crate::{MorisonModel, MorisonModelId, ScreenModel, ScreenModelId};

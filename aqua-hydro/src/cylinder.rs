@@ -1,5 +1,5 @@
 //! Drag coefficient of an isolated smooth circular cylinder, C_cyl(Re), valid for all Re > 0
-//! (hydrodynamics spec §4.6).
+//! (docs/theory/hydrodynamics.md#cylinder-drag).
 //!
 //! Inside [Re_a, Re_b] the Kristiansen–Faltinsen polynomial P(log₁₀ Re) is used; outside, the
 //! smooth-cylinder fit of N.-S. Cheng (2013, J. Hydraul. Eng. 139(6))

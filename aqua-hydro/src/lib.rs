@@ -1,5 +1,5 @@
-//! aqua-hydro — loads from the water on nets, lines and point bodies (specification:
-//! `shared/spec/hydrodynamics.md`). It knows nothing about solvers: given a sea
+//! aqua-hydro — loads from the water on nets, lines and point bodies (theory:
+//! `docs/theory/hydrodynamics.md`). It knows nothing about solvers: given a sea
 //! ([`aqua_env::Sea`]), a time, node positions and velocities, it returns nodal forces,
 //! added-mass blocks and the closed-form derivatives ∂f/∂v (hydrodynamic damping) and ∂f/∂x.
 //!
@@ -19,7 +19,8 @@
 //! - Wake: r = 1, clamp(f), 1 − 0.46·C_D0 (Løland) or clamp((c + 0.05 − 0.38Sn)/(c + 0.05))
 //!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]).
 //! - Linearisation: with J_w = ∂F/∂U_r of an element of n nodes and equal force shares,
-//!   ∂f_i/∂v_j = −J_w/n² for every node pair (spec §7).
+//!   ∂f_i/∂v_j = −J_w/n² for every node pair
+//!   (docs/theory/hydrodynamics.md#distribution-to-nodes).
 //!
 //! Entry point: [`LoadAssembly`], built once from [`Elements`]; see [`assembly`] for the
 //! output layout.

@@ -1,6 +1,6 @@
 //! Morison loads on one line element: drag, Froude–Krylov and hydrodynamic-mass inertia,
 //! added mass and buoyancy, all scaled by the wetted fraction of the circular section
-//! (spec §5, §7.2).
+//! (docs/theory/hydrodynamics.md#morison-line-model, #line-jacobians).
 
 use crate::morison::MorisonModel;
 use crate::panel::{M3, V3, Want, ZERO_SPEED};
@@ -184,7 +184,8 @@ mod tests {
 
     #[test]
     fn worked_drag_case() {
-        // spec §8: M1, d_h = 0.05, nodes (0,0,−5), (1,0,−5−√3), U = (0.4,0,0)
+        // docs/theory/hydrodynamics.md#worked-load-cases: M1, d_h = 0.05, nodes (0,0,−5),
+        // (1,0,−5−√3), U = (0.4,0,0)
         let mut p = props(MorisonModel::M1);
         p.added_mass = 0.0;
         p.added_mass_axial = 0.0;

@@ -1,5 +1,5 @@
 //! Morison drag coefficients of lines: normal C_n and tangential C_t as functions of the
-//! Reynolds number (hydrodynamics spec §5.2, §7.2).
+//! Reynolds number (docs/theory/hydrodynamics.md#morison-coefficients, #line-jacobians).
 
 use crate::error::{HydroError, check_non_negative, check_solidity};
 use crate::screen::clamp_re;

@@ -1,4 +1,5 @@
-//! Screen-model loads on one triangle of net (spec §4.2–4.4, §7.1).
+//! Screen-model loads on one triangle of net (docs/theory/hydrodynamics.md#net-panels,
+//! #panel-velocity-jacobian, #panel-position-jacobian).
 //!
 //! F = ½ρ_w·φ·A·[C_D·s·U_r + G·(s²·n − (n·U_r)·U_r)], G = C_L/sin θ, n the normal oriented
 //! downstream; S4 in its native form F = ½ρ_w·φ·A·[C_n(n·U_r)²n + C_t|U_t|U_t].

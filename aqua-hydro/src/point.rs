@@ -1,5 +1,5 @@
 //! Point bodies (buoys, sinkers): drag, inertia, added mass and buoyancy on one node
-//! (spec §5.5, fem spec §6.3).
+//! (docs/theory/hydrodynamics.md#point-bodies).
 
 use crate::panel::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;

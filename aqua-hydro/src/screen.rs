@@ -1,6 +1,7 @@
 //! Screen models: drag and lift coefficients of a net panel as functions of the inflow angle θ
 //! (0 = flow normal to the net), the solidity Sn and the twine Reynolds number
-//! (hydrodynamics spec §4.5, §4.6, §7.1).
+//! (docs/theory/hydrodynamics.md#screen-models, #cylinder-drag,
+//! #panel-velocity-jacobian).
 
 use crate::cylinder;
 use crate::error::{HydroError, check_positive};
@@ -133,7 +134,8 @@ pub enum ScreenModel {
     },
 }
 
-/// Coefficients and derivatives of a screen model at one state (§7.1).
+/// Coefficients and derivatives of a screen model at one state
+/// (docs/theory/hydrodynamics.md#panel-velocity-jacobian).
 ///
 /// G = C_L/sin θ; subscripts c and s are ∂/∂c (c = cos θ) and ∂/∂s (relative speed); the
 /// speed derivatives are stored multiplied by s.
@@ -450,7 +452,8 @@ mod tests {
 
     #[test]
     fn s1_s2_s3_table() {
-        // spec §8, Sn = 0.2, S3 with cyl_cd = 1.2; (θ, S1 CD, S1 CL, S2 CD, S2 CL, S3 CD, S3 CL)
+        // docs/theory/hydrodynamics.md#screen-coefficient-values, Sn = 0.2, S3 with cyl_cd = 1.2;
+        // (θ, S1 CD, S1 CL, S2 CD, S2 CL, S3 CD, S3 CL)
         let rows = [
             (0.0, 0.26, 0.0, 0.28856, 0.0, 0.3375, 0.0),
             (

@@ -1,5 +1,5 @@
 //! Net-to-net wake: the current (never the waves) on the downstream part of a cage is reduced
-//! by a factor r ∈ [0, 1] (spec §6).
+//! by a factor r ∈ [0, 1] (docs/theory/hydrodynamics.md#wake-models).
 //!
 //! Models: `none` (r = 1), `factor` (r = clamp(f, 0, 1)), `loland`
 //! (r = 1 − 0.46·C_D0, C_D0 = Sn − 1.24Sn² + 13.7Sn³ unless given), `cheng`

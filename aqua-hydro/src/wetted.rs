@@ -1,6 +1,7 @@
-//! Wetted fractions: of a triangle with linear submergence (spec §4.4), of a line with a
-//! circular section (§5.4) and of a point body (fem spec §6.3); each with its derivatives with
-//! respect to the nodal submergences ζ_j = η_j − z_j.
+//! Wetted fractions: of a triangle with linear submergence
+//! (docs/theory/hydrodynamics.md#wetted-fraction-of-a-triangle), of a line with a circular section
+//! (#wetted-fraction-of-a-line) and of a point body (#point-bodies); each with its derivatives
+//! with respect to the nodal submergences ζ_j = η_j − z_j.
 
 use std::f64::consts::PI;
 
@@ -115,8 +116,9 @@ fn section_integral(lo: f64, hi: f64, r: f64) -> (f64, f64, f64) {
 /// centreline submergence varies linearly from ζ₁ to ζ₂, and ∂φ̄/∂ζ₁, ∂φ̄/∂ζ₂.
 ///
 /// Computed as φ̄ = (1/(ζ₂ − ζ₁))·∫_{ζ₁}^{ζ₂} ϕ dζ with 4-point Gauss–Legendre on the part
-/// where |ζ| < r (the spec's sub-intervals split at ζ = ±r, mapped affinely), so the
-/// derivatives are exact derivatives of the computed φ̄.
+/// where |ζ| < r (the sub-intervals of docs/theory/hydrodynamics.md#wetted-fraction-of-a-line
+/// split at ζ = ±r, mapped affinely), so the derivatives are exact derivatives of the computed
+/// φ̄.
 pub fn line(z1: f64, z2: f64, r: f64) -> (f64, [f64; 2]) {
     if r <= 0.0 {
         return length_fraction(z1, z2);

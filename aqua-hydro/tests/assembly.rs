@@ -1,5 +1,5 @@
-//! Load assembly checks against independent numbers: spec §8 worked cases, closed forms,
-//! finite differences and symmetry.
+//! Load assembly checks against independent numbers:
+//! docs/theory/hydrodynamics.md#worked-load-cases, closed forms, finite differences and symmetry.
 
 use aqua_env::{
     Component, Constants, Current, Depth, LinearSum, Phase, Ramp, Sea, Stretching, Waves,
@@ -79,7 +79,8 @@ fn total(f: &[[f64; 3]]) -> [f64; 3] {
 
 #[test]
 fn worked_panel_force() {
-    // spec §8: S1, Sn = 0.2, U = (0.5, 0, 0), unit-square quad with normal (cos 30°, sin 30°, 0)
+    // docs/theory/hydrodynamics.md#worked-load-cases: S1, Sn = 0.2, U = (0.5, 0, 0), unit-square
+    // quad with normal (cos 30°, sin 30°, 0)
     let x = vec![
         [0.25, -0.4330127019, -2.5],
         [-0.25, 0.4330127019, -2.5],
@@ -212,7 +213,8 @@ fn worked_line_force_half_per_node() {
 
 #[test]
 fn floating_collar_half_submerged() {
-    // spec §8: horizontal pipe d_v = 0.35 m at z = 0 → φ̄ = ½, 483.549029 N/m
+    // docs/theory/hydrodynamics.md#wetted-fraction-of-a-line: horizontal pipe d_v = 0.35 m at z = 0
+    // → φ̄ = ½, 483.549029 N/m
     let x = vec![[0.0, 0.0, 0.0], [3.0, 0.0, 0.0]];
     let els = Elements {
         lines: vec![LineElement {
@@ -813,7 +815,7 @@ fn diagnostics_report_reynolds_range() {
     assert!(d.line_reynolds.is_none() && !d.reynolds_clamped);
     let s = asm.net_summary(&x);
     assert!((s.area - 1.0).abs() < 1e-12);
-    // spec §8: twine volume of 1 m² of net, dw0 = 2.4 mm, Sn = 0.2
+    // docs/theory/hydrodynamics.md#buoyancy: twine volume of 1 m² of net, dw0 = 2.4 mm, Sn = 0.2
     assert!((s.expected_twine_volume - 3.7699112e-4).abs() < 5e-11);
 }
 

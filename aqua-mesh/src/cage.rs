@@ -1,4 +1,5 @@
-//! Parametric cage builders CCT, CCS, CSM, SSM (cages.md §2–§10).
+//! Parametric cage builders CCT, CCS, CSM, SSM (docs/theory/cages.md#cage-types to
+//! #multiple-cages).
 //!
 //! Discretisation (round half away from zero): NT = round(C/el) (square: 4·round(a/el)),
 //! NN = round(H/el), BN = round(R_b/(√2·el)) (square: round(a/(√2·el))). Net node (i, ℓ) =
@@ -118,7 +119,8 @@ impl CageType {
     }
 }
 
-/// One `[[cage]]` table (cages.md §3). Every key is optional except `type`; `None` = default.
+/// One `[[cage]]` table (docs/theory/cages.md#cage-parameters). Every key is optional except
+/// `type`; `None` = default.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CageParams {
@@ -218,7 +220,7 @@ impl CageParams {
         k
     }
 
-    /// Apply defaults and validate every key (cages.md §13).
+    /// Apply defaults and validate every key (docs/theory/cages.md#input-validation).
     pub fn resolve(&self) -> Result<ResolvedCage> {
         let name = self.name.clone().unwrap_or_else(|| "cage0".to_string());
         let obj = name.as_str();
@@ -310,7 +312,8 @@ impl CageParams {
             ));
         }
 
-        // Counts (§4), with the limits of §13 in the messages.
+        // Counts (docs/theory/cages.md#discretisation-counts), with the limits of
+        // #input-validation in the messages.
         let (nt, ns) = if square {
             let a = c / 4.0;
             let ns = (a / el).round() as usize;
@@ -570,8 +573,8 @@ pub struct ResolvedCage {
     pub notices: Vec<String>,
 }
 
-/// Default section of the frame groups (cages.md §6). The pipe modulus is not given by the
-/// spec: 1.0e9 Pa (short-term modulus of PE pipe grades) is used; override with
+/// Default section of the frame groups (docs/theory/cages.md#default-sections). The pipe modulus is
+/// not given by the spec: 1.0e9 Pa (short-term modulus of PE pipe grades) is used; override with
 /// `groups.<group>.youngs_modulus`.
 pub fn default_frame_section(group: &str) -> Option<Section> {
     match group {
@@ -583,7 +586,7 @@ pub fn default_frame_section(group: &str) -> Option<Section> {
 }
 
 impl ResolvedCage {
-    /// Unit shape vector u_i (cages.md §5).
+    /// Unit shape vector u_i (docs/theory/cages.md#net-geometry).
     fn shape(&self, i: usize) -> Vector3<f64> {
         if self.square {
             const C: [[f64; 2]; 5] = [
@@ -855,7 +858,7 @@ impl ResolvedCage {
         }
         b.weight(g_tip, tip, self.tip_weight);
 
-        // Mesh grouping (§8) from copy 0.
+        // Mesh grouping (docs/theory/cages.md#mesh-grouping) from copy 0.
         let mut notices = self.notices.clone();
         let mean = b.mean_length(g_tw);
         let grouping = self.net.grouping(obj, mean, &mut notices)?;

@@ -1,7 +1,7 @@
 //! Typed errors of the geometry crate.
 //!
 //! Every message names the object, the key (or file position), the offending value and what
-//! would be valid (cages.md §13).
+//! would be valid (docs/theory/cages.md#input-validation).
 
 use std::fmt;
 use std::path::PathBuf;

@@ -1,7 +1,8 @@
 //! aqua-mesh: the geometry of aquaculture structures.
 //!
-//! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`], cages.md §2–§10), a flat
-//!   net panel builder ([`PanelParams`], §11) and a single-line builder ([`LineParams`], §11).
+//! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`],
+//!   docs/theory/cages.md#cage-types to #multiple-cages), a flat net panel builder
+//!   ([`PanelParams`], #flat-net-panel) and a single-line builder ([`LineParams`], #single-line).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
 //! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]).
 //!
@@ -17,8 +18,9 @@
 //! net node (i, ℓ) = origin + ρ_ℓ·u_i + z_ℓ·ẑ,   id = i·(NN+BN) + ℓ
 //! ```
 //!
-//! Mesh grouping (cages.md §8, fem.md §4): one numerical twine of mean as-built length L̄ stands
-//! for λ = L̄ / l_p physical twines of diameter dw0 and bar length l_p, with
+//! Mesh grouping (docs/theory/cages.md#mesh-grouping, docs/theory/fem.md#sections): one numerical
+//! twine of mean as-built length L̄ stands for λ = L̄ / l_p physical twines of diameter dw0 and bar
+//! length l_p, with
 //!
 //! ```text
 //! dws = dwe = √λ · dw0      (structural/elastic: mass, volume, EA)

@@ -1,4 +1,4 @@
-//! Single line builder (`[[line]]`: moorings, bridles; cages.md §11).
+//! Single line builder (`[[line]]`: moorings, bridles; docs/theory/cages.md#single-line).
 //!
 //! Nodes 0..N from anchor to fairlead, element unstretched length L0/N. Initial shape: straight
 //! and uniformly stretched if L0 ≤ chord; otherwise the inextensible catenary of length L0
@@ -33,7 +33,7 @@ pub enum LineShape {
     Straight,
 }
 
-/// One `[[line]]` table. Section keys (fem.md §4) sit directly in the table.
+/// One `[[line]]` table. Section keys (docs/theory/fem.md#sections) sit directly in the table.
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LineParams {

@@ -1,22 +1,24 @@
 //! The mesh: nodes, 2-node line elements, net panels, named groups by role, point weights.
 //!
 //! Ids are dense indices into the vectors of [`Mesh`] and follow the normative ordering of
-//! cages.md §5–§6. Several objects (cages, panels, lines, imported meshes) can live in one mesh
-//! ([`Mesh::append`]); every group belongs to one object, and every entity records its
-//! `(object, copy)` (copy = index of the origin of a multi-origin cage).
+//! docs/theory/cages.md#net-geometry and #frame-ropes-and-weights. Several objects (cages, panels,
+//! lines, imported meshes) can live in one mesh ([`Mesh::append`]); every group belongs to one
+//! object, and every entity records its `(object, copy)` (copy = index of the origin of a
+//! multi-origin cage).
 
 use crate::net::NetGrouping;
 use nalgebra::{Point3, Vector3};
 use serde::Serialize;
 use std::collections::BTreeSet;
 
-/// Role of a group: what the downstream models do with it (cages.md §7, §11, §12).
+/// Role of a group: what the downstream models do with it (docs/theory/cages.md#groups-produced,
+/// #flat-net-panel, #single-line, #gmsh-import).
 ///
 /// The numeric value ([`Role::id`]) is written to VTK as `role_id`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Role {
-    /// Net twine cables (λ-grouped, fem.md §4). Lines.
+    /// Net twine cables (λ-grouped, docs/theory/cages.md#mesh-grouping). Lines.
     NetTwines,
     /// Hydrodynamic screen panels (quads and triangles). Faces.
     NetPanels,
@@ -161,10 +163,11 @@ impl Role {
 /// cage's drag by 2.5 %.
 pub const TENSION_ONLY: f64 = 0.0;
 
-/// Section and material of a line group (keys of fem.md §4).
+/// Section and material of a line group (keys of docs/theory/fem.md#sections).
 ///
 /// Diameters in m, modulus in Pa, density in kg/m³. For net twines the three diameters come from
-/// mesh grouping (cages.md §8): `diameter` = dws, `elastic_diameter` = dwe, `hydro_diameter` = dwh.
+/// mesh grouping (docs/theory/cages.md#mesh-grouping): `diameter` = dws, `elastic_diameter` = dwe,
+/// `hydro_diameter` = dwh.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Section {
     /// Material label (informative), e.g. `nylon`, `rope`, `HDPE pipe`.
@@ -190,11 +193,12 @@ pub struct Section {
     pub ea: Option<f64>,
     /// Explicit mass per length μ [kg/m] overriding ρ_s·A.
     pub mass_per_length: Option<f64>,
-    /// Axial damping c_a [N·s] (fem.md §3); `None` = no damping unless a ratio is given.
+    /// Axial damping c_a [N·s] (docs/theory/fem.md#cable-element); `None` = no damping unless a
+    /// ratio is given.
     pub axial_damping: Option<f64>,
-    /// Axial damping ratio ζ (fem.md §3).
+    /// Axial damping ratio ζ (docs/theory/fem.md#cable-element).
     pub axial_damping_ratio: Option<f64>,
-    /// Initial tension T0 [N] (fem.md §3), default 0.
+    /// Initial tension T0 [N] (docs/theory/fem.md#cable-element), default 0.
     pub initial_tension: f64,
     /// Seabed contact on/off (default on).
     pub seabed: bool,
@@ -346,7 +350,7 @@ pub struct Panel {
 }
 
 /// A point weight (sinker, tip weight, centre weight) on one node: a point body of mass W/g and
-/// zero volume (fem.md §6.3).
+/// zero volume (docs/theory/fem.md#loads).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PointWeight {
     /// Node carrying the weight.
@@ -371,7 +375,7 @@ pub enum ObjectKind {
     Gmsh,
 }
 
-/// Discretisation numbers of a cage (cages.md §4).
+/// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CageCounts {
     /// Nodes around the circumference NT.
@@ -813,8 +817,9 @@ impl MeshBuilder {
     }
 }
 
-/// Replicate copy 0 of a single-object mesh at several origins (cages.md §10): copy k is copy 0
-/// translated by `origins[k] − origins[0]`; its entities follow copy k−1's; groups are shared.
+/// Replicate copy 0 of a single-object mesh at several origins
+/// (docs/theory/cages.md#multiple-cages): copy k is copy 0 translated by `origins[k] − origins[0]`;
+/// its entities follow copy k−1's; groups are shared.
 pub(crate) fn replicate(mesh: &mut Mesh, origins: &[[f64; 3]]) {
     let n0 = mesh.nodes.len();
     let l0 = mesh.lines.len();
@@ -864,7 +869,7 @@ pub(crate) fn replicate(mesh: &mut Mesh, origins: &[[f64; 3]]) {
 }
 
 /// Overrides of a line group's section: a `[cage.groups.<group>]` table or the section keys of
-/// a `[[line]]` table (fem.md §4 key names).
+/// a `[[line]]` table (docs/theory/fem.md#sections key names).
 #[derive(Debug, Clone, Default, PartialEq, serde::Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SectionOverride {

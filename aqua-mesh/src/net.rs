@@ -1,4 +1,5 @@
-//! Net parameters and mesh grouping (cages.md §3 `net.*`, §8; fem.md §4).
+//! Net parameters and mesh grouping (docs/theory/cages.md#cage-parameters `net.*`, #mesh-grouping;
+//! docs/theory/fem.md#sections).
 //!
 //! One numerical twine of mean length L̄ stands for λ = L̄ / l_p physical twines
 //! (l_p = half mesh = bar length). Diameters: dws = dwe = √λ·dw0 (structural, elastic),
@@ -54,7 +55,8 @@ pub struct NetResolved {
     pub density: f64,
 }
 
-/// The net of one object: inputs and the mesh-grouping numbers (cages.md §8).
+/// The net of one object: inputs and the mesh-grouping numbers
+/// (docs/theory/cages.md#mesh-grouping).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct NetGrouping {
     /// Physical twine diameter dw0 [m] (screen panels, Reynolds numbers).
@@ -125,8 +127,8 @@ fn positive(object: &str, key: &str, v: f64) -> Result<f64> {
 }
 
 impl NetParams {
-    /// Apply defaults and validate (cages.md §13). Warnings (solidity far from the formula) are
-    /// pushed to `notices`.
+    /// Apply defaults and validate (docs/theory/cages.md#input-validation). Warnings (solidity far
+    /// from the formula) are pushed to `notices`.
     pub fn resolve(&self, object: &str, notices: &mut Vec<String>) -> Result<NetResolved> {
         let d = positive(
             object,
@@ -197,8 +199,9 @@ impl NetParams {
 }
 
 impl NetResolved {
-    /// Mesh grouping from the mean as-built twine element length [m] (cages.md §8).
-    /// λ < 1 is an error; λ > 500 a warning pushed to `notices`.
+    /// Mesh grouping from the mean as-built twine element length [m]
+    /// (docs/theory/cages.md#mesh-grouping). λ < 1 is an error; λ > 500 a warning pushed to
+    /// `notices`.
     pub fn grouping(
         &self,
         object: &str,
@@ -250,7 +253,8 @@ mod tests {
 
     #[test]
     fn worked_case_diameters() {
-        // fem.md §4: λ = 81.11, dw0 = 2.85 mm -> dws = 0.02567 m, dwh = 0.2312 m.
+        // docs/theory/cages.md#mesh-grouping: λ = 81.11, dw0 = 2.85 mm -> dws = 0.02567 m, dwh =
+        // 0.2312 m.
         let net = NetParams::default().resolve("t", &mut vec![]).unwrap();
         let g = net
             .grouping("t", 81.11 * DEFAULT_HALF_MESH, &mut vec![])

@@ -1,4 +1,4 @@
-//! Flat net panel builder (`[[panel]]`, cages.md §11).
+//! Flat net panel builder (`[[panel]]`, docs/theory/cages.md#flat-net-panel).
 //!
 //! Axes: e_n = normal, e_u = up projected onto the panel plane, e_w = e_u × e_n.
 //! Node (i, j) = centre + (i/n_w − ½)·W·e_w + (½ − j/n_h)·H_p·e_u, id = j·(n_w+1) + i.
@@ -293,7 +293,8 @@ mod tests {
 
     #[test]
     fn spec_counts_and_normal() {
-        // cages.md §11: 1 m × 1 m, 10 × 10 → 121 nodes, 220 lines, 100 quads.
+        // docs/theory/cages.md#flat-net-panel: 1 m × 1 m, 10 × 10 → 121 nodes, 220 lines, 100
+        // quads.
         let m = PanelParams::new(1.0, 1.0).build().unwrap();
         assert_eq!(
             (m.nodes.len(), m.lines.len(), m.panels.len()),

@@ -1,4 +1,5 @@
-//! Panel and line builders over a range of parameters (cages.md §11).
+//! Panel and line builders over a range of parameters (docs/theory/cages.md#flat-net-panel,
+//! #single-line).
 
 use aqua_mesh::{Fairlead, LineParams, LineShape, PanelParams};
 use nalgebra::{Point3, Vector3};

@@ -1,5 +1,5 @@
-//! Cage builders against cages.md §9 (worked case and defaults table), geometry invariants
-//! (proptest) and bad-input errors (§13).
+//! Cage builders against docs/theory/cages.md#worked-ssm-case (worked case and defaults table),
+//! geometry invariants (proptest) and bad-input errors (docs/theory/cages.md#input-validation).
 
 use aqua_mesh::{CageParams, CageType, Mesh, PanelNodes, Role};
 use nalgebra::Vector3;
@@ -72,7 +72,8 @@ fn worked_ssm_geometry_and_grouping() {
     let tip = m.group(0, "tip").unwrap().nodes[0];
     assert!((m.nodes[tip].z + 18.0).abs() < 1e-9);
 
-    // Net line lengths: 2820.17 m with the top edge, 2700.17 m without (spec, 2 decimals).
+    // Net line lengths: 2820.17 m with the top edge, 2700.17 m without
+    // (docs/theory/cages.md#mesh-grouping, 2 decimals).
     let tw = m.group(0, "net_twines").unwrap();
     let top: std::collections::BTreeSet<usize> = m
         .group(0, "net_top")
@@ -154,7 +155,8 @@ fn worked_ssm_three_origins() {
 
 #[test]
 fn defaults_table() {
-    // cages.md §9: type, NT NN BN, nodes, net lines, panels, ropes, ties, ring+links, bottom, λ.
+    // docs/theory/cages.md#worked-ssm-case: type, NT NN BN, nodes, net lines, panels, ropes, ties,
+    // ring+links, bottom, λ.
     let rows = [
         (
             CageType::Ssm,

@@ -50,7 +50,7 @@ fn vtu_reads_back_with_vtkio() {
     assert_eq!(piece.num_points(), 913);
     let types = &piece.cells.types;
     // CCT defaults: 1056 net + 48 ring + 48 links + 336 ropes + 48 ties + 48 bottom ring lines,
-    // 480 quads, 48 triangles (cages.md §9).
+    // 480 quads, 48 triangles (docs/theory/cages.md#worked-ssm-case).
     let nl = 1056 + 96 + 336 + 48 + 48;
     assert_eq!(types.iter().filter(|&&t| t == CellType::Line).count(), nl);
     assert_eq!(types.iter().filter(|&&t| t == CellType::Quad).count(), 480);
@@ -175,8 +175,8 @@ fn independent_reader_python_meshio() {
     let cell_arrays = "group_id:1,role_id:1,object_id:1,copy_id:1,diameter:1,\
                        elastic_diameter:1,hydro_diameter:1,solidity:1,tension:1";
 
-    // SSM worked case (cages.md §9): 1057 nodes; 1344 + 336 + 144 + 96 lines; 624 quads,
-    // 48 triangles.
+    // SSM worked case (docs/theory/cages.md#worked-ssm-case): 1057 nodes; 1344 + 336 + 144 + 96
+    // lines; 624 quads, 48 triangles.
     let mut p = CageParams::new(CageType::Ssm);
     p.circumference = Some(120.0);
     let m = p.build().unwrap();

@@ -148,7 +148,7 @@ impl RunFiles {
 }
 
 /// Writes the wave component table (i, ω, T, k, a, β, φ) that reproduces a sea exactly
-/// (environment.md §1).
+/// (docs/theory/environment.md#summation).
 pub fn write_component_table(sea: &aqua_env::Sea, path: &Path) -> Result<()> {
     let mut text = String::from("i,omega,T,k,a,beta_deg,phase_deg\n");
     if let aqua_env::Waves::Linear { sum, .. } = sea.waves() {

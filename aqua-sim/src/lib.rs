@@ -8,8 +8,8 @@
 //! physical outputs of each output step, [`files`] writes them, and [`coupling`] lets another
 //! code drive prescribed nodes step by step.
 //!
-//! Governing equations (fem.md §2, §9–§12): the semi-discrete equations of motion of the
-//! cable network
+//! Governing equations (docs/theory/fem.md#model-and-unknowns, #static-solver to
+//! #explicit-schemes): the semi-discrete equations of motion of the cable network
 //!
 //! ```text
 //! M ẍ + C ẋ + f_int(x) = f_g + f_w(x, ẋ, ẍ, t) + f_c(x)      (free DOFs)

@@ -1,20 +1,21 @@
 //! Scene files (TOML): the schema, and reading with errors that name the file, the line, the
 //! key and what would be valid.
 //!
-//! Layout (key names follow `shared/spec/`):
+//! Layout (key names as in the top-level `README.md`; `x.md#anchor` is a section of
+//! `docs/theory/x.md`, `README.md#anchor` one of the top-level README):
 //!
 //! ```toml
-//! name = "reference-cage"        # optional; default: the file stem
-//! [sea]                          # aqua-env (environment.md §1), plus [sea.seabed] kbot, cbot
-//! [[cage]]                       # aqua-mesh CageParams (cages.md §3) + net.* hydro keys
-//! [[panel]]                      # aqua-mesh PanelParams (cages.md §11) + net.* hydro keys
-//! [[line]]                       # aqua-mesh LineParams (cages.md §11) + Morison keys
-//! [[mesh]]                       # aqua-mesh GmshParams (cages.md §12) + net.* hydro keys
-//! [[group]]                      # per element group: section overrides + Morison keys
-//! [[point]]                      # point bodies on node groups (fem.md §6.3)
-//! [[fix]]                        # extra fixed DOFs (fem.md §7)
-//! [[prescribed]]                 # prescribed motions (fem.md §7)
-//! [analysis]                     # static / dynamic settings (fem.md §15)
+//! name = "reference-cage" # optional; default: the file stem
+//! [sea]                   # aqua-env (README.md#scene-sea-table), plus [sea.seabed] kbot, cbot
+//! [[cage]]                # aqua-mesh CageParams (cages.md#cage-parameters) + net.* hydro keys
+//! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
+//! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
+//! [[mesh]]                # aqua-mesh GmshParams (cages.md#gmsh-import) + net.* hydro keys
+//! [[group]]               # per element group: section overrides + Morison keys
+//! [[point]]               # point bodies on node groups (fem.md#loads)
+//! [[fix]]                 # extra fixed DOFs (fem.md#boundary-conditions)
+//! [[prescribed]]          # prescribed motions (fem.md#boundary-conditions)
+//! [analysis]              # static / dynamic settings (README.md#scene-files)
 //! ```
 
 use crate::error::{Result, SimError};
@@ -67,7 +68,8 @@ pub enum NetDrag {
     Morison,
 }
 
-/// The hydrodynamic `net.*` keys of a cage, panel or gmsh mesh (hydrodynamics.md §1).
+/// The hydrodynamic `net.*` keys of a cage, panel or gmsh mesh
+/// (docs/theory/hydrodynamics.md#screen-models).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NetHydro {
@@ -126,7 +128,8 @@ const NET_HYDRO_KEYS: &[&str] = &[
     "wake",
 ];
 
-/// Morison and inertia keys of a cable group (hydrodynamics.md §1, `[[group]]`, `[[line]]`).
+/// Morison and inertia keys of a cable group (docs/theory/hydrodynamics.md#morison-coefficients,
+/// `[[group]]`, `[[line]]`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LineHydro {
@@ -192,13 +195,13 @@ impl LineHydro {
 pub struct GroupSpec {
     /// Group name (e.g. "ropes", "net_twines", or a line's group).
     pub name: String,
-    /// Section overrides (fem.md §4).
+    /// Section overrides (docs/theory/fem.md#sections).
     pub section: SectionOverride,
     /// Morison and inertia keys.
     pub hydro: LineHydro,
 }
 
-/// `[[point]]`: point bodies on every node of a node group (fem.md §6.3).
+/// `[[point]]`: point bodies on every node of a node group (docs/theory/fem.md#loads).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PointSpec {
@@ -242,7 +245,7 @@ fn all_dofs() -> Vec<String> {
     vec!["x".into(), "y".into(), "z".into()]
 }
 
-/// The kind of a prescribed motion (fem.md §7).
+/// The kind of a prescribed motion (docs/theory/fem.md#boundary-conditions).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MotionKind {
@@ -302,8 +305,9 @@ pub enum AnalysisKind {
     StaticDynamic,
 }
 
-/// `[analysis.static]` (fem.md §9): the keys are fields of aqua-fem's [`StaticSettings`], whose
-/// `Default` gives every default; this adapter only says which fields are scene keys.
+/// `[analysis.static]` (docs/theory/fem.md#static-solver): the keys are fields of aqua-fem's
+/// [`StaticSettings`], whose `Default` gives every default; this adapter only says which fields are
+/// scene keys.
 #[derive(Deserialize, Serialize)]
 #[serde(
     remote = "StaticSettings",
@@ -358,9 +362,9 @@ impl Scheme {
     }
 }
 
-/// `[analysis.dynamic]` (fem.md §10–§12): the keys of aqua-fem's [`DynamicSettings`] (HHT-α)
-/// and [`ExplicitSettings`]; defaults not given here are theirs
-/// ([`DynamicSpec::default`]). Resolved into solver settings by [`crate::plan::Plan`].
+/// `[analysis.dynamic]` (docs/theory/fem.md#hht-alpha, #step-control, #explicit-schemes): the keys
+/// of aqua-fem's [`DynamicSettings`] (HHT-α) and [`ExplicitSettings`]; defaults not given here are
+/// theirs ([`DynamicSpec::default`]). Resolved into solver settings by [`crate::plan::Plan`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct DynamicSpec {

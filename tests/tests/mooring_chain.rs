@@ -1,5 +1,6 @@
 //! The bundled mooring chain: the static fairlead and anchor reactions against the elastic
-//! catenary with touchdown on a frictionless seabed (fem.md §16), solved here independently.
+//! catenary with touchdown on a frictionless seabed (docs/theory/fem.md#test-oracles), solved here
+//! independently.
 
 mod common;
 use common::*;

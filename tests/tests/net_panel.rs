@@ -1,6 +1,6 @@
 //! A rigid net panel in a uniform current: the force equals ½ρAU²·(C_D, C_L) of the screen
-//! model (hydrodynamics.md §4.5, S1 of Aarsnes et al.), computed here from the published
-//! formula, at normal incidence (the bundled example) and at 30° yaw.
+//! model (docs/theory/hydrodynamics.md#screen-models, S1 of Aarsnes et al.), computed here from the
+//! published formula, at normal incidence (the bundled example) and at 30° yaw.
 
 mod common;
 use common::*;

@@ -1,6 +1,6 @@
-//! The reference SSM cage (cages.md §9) in a uniform current, at a coarser element length so
-//! the suite stays quick: symmetry, monotone trends with current speed, and agreement between
-//! the static equilibrium and a long dynamic run from the as-built state.
+//! The reference SSM cage (docs/theory/cages.md#worked-ssm-case) in a uniform current, at a coarser
+//! element length so the suite stays quick: symmetry, monotone trends with current speed, and
+//! agreement between the static equilibrium and a long dynamic run from the as-built state.
 
 mod common;
 use common::*;

@@ -1,6 +1,6 @@
 //! `aqua coeffs`: tables of screen-model drag/lift coefficients against the inflow angle and of
 //! Morison normal/tangential coefficients against the Reynolds number, to compare and choose
-//! models (hydrodynamics spec §1, §4.5, §5.2).
+//! models (docs/theory/hydrodynamics.md#screen-models, #morison-coefficients).
 
 use crate::InputError;
 use aqua_hydro::coefficients::{MorisonTable, ScreenTable, morison_table, screen_table};

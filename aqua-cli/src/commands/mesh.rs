@@ -6,7 +6,7 @@
 //! ```
 //!
 //! Prints counts per group, λ and the structural, elastic and hydrodynamic diameters
-//! (cages.md §8); `--json` prints the same as JSON.
+//! (docs/theory/cages.md#mesh-grouping); `--json` prints the same as JSON.
 
 use crate::InputError;
 use anyhow::Context;
@@ -35,8 +35,8 @@ pub enum Kind {
     Line,
 }
 
-/// Flags of `aqua mesh`. Flags take the scene keys with dashes; absent flags use the spec
-/// defaults (cages.md §3, §11).
+/// Flags of `aqua mesh`. Flags take the scene keys with dashes; absent flags use the
+/// defaults of docs/theory/cages.md#cage-parameters, #flat-net-panel and #single-line.
 #[derive(clap::Args, Debug, Default)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {

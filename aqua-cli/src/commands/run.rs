@@ -95,7 +95,8 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     }
     let files = RunFiles::create(&a.out, &prep.scene.name, &prep.built)?;
     if prep.built.sea.has_waves() && prep.plan.dynamics.is_some() {
-        // The component table makes the run reproducible exactly (environment.md §1).
+        // The component table makes the run reproducible exactly
+        // (docs/theory/environment.md#summation).
         write_component_table(&prep.built.sea, &a.out.join("wave_components.csv"))?;
     }
     let mut term = Terminal {

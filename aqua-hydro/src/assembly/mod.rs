@@ -1,5 +1,6 @@
 //! The load assembly: built once from element lists, it evaluates the sea once per node and
-//! fills caller-owned arrays with nodal forces, added mass and Jacobian blocks (spec §2, §7).
+//! fills caller-owned arrays with nodal forces, added mass and Jacobian blocks
+//! (docs/theory/hydrodynamics.md#scope-and-principles, #load-jacobians).
 //!
 //! # Elements and indices
 //! Load elements are numbered panels first (in the order given), then lines, then point
@@ -161,7 +162,8 @@ pub struct Diagnostics {
     pub m5_capped: bool,
 }
 
-/// Net area and twine volume of the panels and net twines (spec §4.7, log at start-up).
+/// Net area and twine volume of the panels and net twines (docs/theory/hydrodynamics.md#buoyancy,
+/// log at start-up).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct NetSummary {
     /// Σ weight·area of all panels [m²].
@@ -619,7 +621,8 @@ impl LoadAssembly {
         &self.wake
     }
 
-    /// Net area and twine volumes at positions `x` (log at start-up, spec §4.7).
+    /// Net area and twine volumes at positions `x` (log at start-up,
+    /// docs/theory/hydrodynamics.md#buoyancy).
     pub fn net_summary(&self, x: &[[f64; 3]]) -> NetSummary {
         let mut s = NetSummary::default();
         let v = |i: usize| V3::from(x[i]);

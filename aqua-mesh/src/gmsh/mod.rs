@@ -1,4 +1,4 @@
-//! gmsh import (`[[mesh]]`, cages.md §12).
+//! gmsh import (`[[mesh]]`, docs/theory/cages.md#gmsh-import).
 //!
 //! Physical group names (after `rename`) map to roles: `net`/`net_panels` (dim 2, screen
 //! panels), `twines`/`net_twines` (dim 1), `ropes`, `tie_lines`, `top_ring`, `top_links`,

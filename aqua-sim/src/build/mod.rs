@@ -56,7 +56,8 @@ pub struct Built {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-/// The two ends of a single line (fem.md §14: report end reactions and end-element tensions).
+/// The two ends of a single line (docs/theory/fem.md#outputs: report end reactions and end-element
+/// tensions).
 #[derive(Debug, Clone)]
 pub struct LineEnds {
     /// Line object name.
@@ -136,8 +137,9 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
     })
 }
 
-/// The sea of a scene, its irregular band weighted at the shallowest node (environment.md
-/// §1). The current ramps in only when dynamics starts without a static state that has it.
+/// The sea of a scene, its irregular band weighted at the shallowest node
+/// (docs/theory/environment.md#choosing-the-frequency-band). The current ramps in only when
+/// dynamics starts without a static state that has it.
 pub fn build_sea(scene: &Scene, mesh: &Mesh) -> Result<(Sea, SeaSummary)> {
     let z_top = mesh
         .nodes

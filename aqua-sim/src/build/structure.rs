@@ -44,7 +44,8 @@ pub(super) struct Structure {
     pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
 }
 
-/// The structural environment: gravity, water density and the seabed (environment.md §1).
+/// The structural environment: gravity, water density and the seabed
+/// (docs/theory/environment.md#fluid-constants).
 pub(super) fn environment(scene: &Scene, constants: &Constants) -> Environment {
     Environment {
         gravity: constants.gravity,
@@ -76,7 +77,8 @@ pub(super) fn build_structure(
     }
     let (sections, group_names) = cable_groups(scene, mesh, &mut b)?;
     add_cables(&file, mesh, &sections, &mut b)?;
-    // Sinkers and weights of the builders hang as point masses W/g (cages.md §6).
+    // Sinkers and weights of the builders hang as point masses W/g
+    // (docs/theory/cages.md#frame-ropes-and-weights).
     for w in &mesh.weights {
         b.add_point_body(PointBody {
             node: w.node,
@@ -113,7 +115,7 @@ pub(super) fn group_spec<'a>(
 }
 
 /// One cable group per mesh line group, its section with the `[[group]]` overrides applied
-/// (fem.md §4). Every `[[group]]` must match a group.
+/// (docs/theory/fem.md#sections). Every `[[group]]` must match a group.
 #[allow(clippy::type_complexity)]
 fn cable_groups(
     scene: &Scene,
@@ -173,7 +175,7 @@ fn cable_groups(
 }
 
 /// The cable section of a mesh section: EA, μ, compression ratio, axial damping and seabed
-/// contact (fem.md §4).
+/// contact (docs/theory/fem.md#sections).
 fn cable_section(section: &Section) -> CableSection {
     let mut cs = CableSection::new(section.axial_stiffness(), section.linear_mass())
         .with_compression_ratio(section.compression_ratio);
@@ -285,7 +287,8 @@ fn fixed_nodes(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<BTree
     Ok(supported)
 }
 
-/// `[[prescribed]]` motions (fem.md §7), or external ones for a coupling.
+/// `[[prescribed]]` motions (docs/theory/fem.md#boundary-conditions), or external ones for a
+/// coupling.
 #[allow(clippy::type_complexity)]
 fn prescribed_motions(
     scene: &Scene,

@@ -148,7 +148,8 @@ fn wake_groups(
     Ok((groups, index, nets_out))
 }
 
-/// Screen panels of the nets whose drag is carried by panels (hydrodynamics.md §2).
+/// Screen panels of the nets whose drag is carried by panels
+/// (docs/theory/hydrodynamics.md#scope-and-principles).
 fn screen_panels(
     scene: &Scene,
     mesh: &Mesh,
@@ -189,7 +190,7 @@ fn screen_panels(
     Ok((panels, panel_loaded))
 }
 
-/// Morison line elements, one per mesh line (hydrodynamics.md §3).
+/// Morison line elements, one per mesh line (docs/theory/hydrodynamics.md#morison-line-model).
 fn morison_lines(
     scene: &Scene,
     mesh: &Mesh,
