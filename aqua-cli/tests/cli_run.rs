@@ -215,12 +215,9 @@ fn chain_scene(dir: &Path, t_end: f64, extra: &str) -> PathBuf {
     p
 }
 
-#[test]
-fn interrupted_run_leaves_a_consistent_pvd() {
-    let dir = scratch("interrupt");
-    let scene = chain_scene(&dir, 100_000.0, "");
-    let out = dir.join("out");
-    let child = Command::new(env!("CARGO_BIN_EXE_aqua"))
+/// `aqua run SCENE --out OUT --quiet` in the background, stderr captured.
+fn spawn_quiet_run(scene: &Path, out: &Path) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_aqua"))
         .args([
             "run",
             scene.to_str().unwrap(),
@@ -231,7 +228,24 @@ fn interrupted_run_leaves_a_consistent_pvd() {
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
+        .unwrap()
+}
+
+/// Ctrl-C as a terminal sends it.
+fn send_sigint(child: &std::process::Child) {
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
         .unwrap();
+    assert!(status.success());
+}
+
+#[test]
+fn interrupted_run_leaves_a_consistent_pvd() {
+    let dir = scratch("interrupt");
+    let scene = chain_scene(&dir, 100_000.0, "");
+    let out = dir.join("out");
+    let child = spawn_quiet_run(&scene, &out);
     let pvd = out.join("mooring-chain.pvd");
     let start = Instant::now();
     while start.elapsed() < Duration::from_secs(120) {
@@ -240,11 +254,7 @@ fn interrupted_run_leaves_a_consistent_pvd() {
         }
         std::thread::sleep(Duration::from_millis(50));
     }
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+    send_sigint(&child);
     let result = child.wait_with_output().unwrap();
     assert_eq!(
         result.status.code(),
@@ -354,18 +364,7 @@ fn interrupt_during_statics_keeps_the_best_state_as_step_0() {
     let dir = scratch("interrupt-statics");
     let out = dir.join("out");
     let scene = root().join("examples/reference-cage.toml");
-    let child = Command::new(env!("CARGO_BIN_EXE_aqua"))
-        .args([
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--quiet",
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let child = spawn_quiet_run(&scene, &out);
     std::thread::sleep(Duration::from_secs(3));
     let pvd = out.join("reference-cage.pvd");
     assert!(
@@ -373,11 +372,7 @@ fn interrupt_during_statics_keeps_the_best_state_as_step_0() {
         "statics finished before the interrupt; the test needs a longer static solve"
     );
     let sent = Instant::now();
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+    send_sigint(&child);
     let result = child.wait_with_output().unwrap();
     let waited = sent.elapsed();
     assert_eq!(

@@ -73,11 +73,14 @@ fn axial_bar_own_weight_exact_at_nodes() {
     );
 }
 
-fn catenary_case(n: usize, sag0: f64, tol: f64) -> (f64, f64, f64) {
+/// The level catenary of docs/theory/fem.md#elastic-catenary in air (l = 100 m, L0 = 105 m,
+/// w = 10 N/m) with `n` elements, axial stiffness `ea` and an as-built sag `sag0` [m]; both
+/// ends fixed. Returns the model and its nodes.
+fn level_catenary_model(n: usize, ea: f64, sag0: f64) -> (Model, Vec<usize>) {
     let w = 10.0;
     let mut b = ModelBuilder::new(env_air());
     let g = b
-        .add_group("rope", CableSection::new(1e5, w / DEFAULT_GRAVITY))
+        .add_group("rope", CableSection::new(ea, w / DEFAULT_GRAVITY))
         .unwrap();
     let nodes = add_line(
         &mut b,
@@ -90,7 +93,11 @@ fn catenary_case(n: usize, sag0: f64, tol: f64) -> (f64, f64, f64) {
     );
     b.fix(nodes[0], Dofs::ALL).unwrap();
     b.fix(nodes[n], Dofs::ALL).unwrap();
-    let m = b.build().unwrap();
+    (b.build().unwrap(), nodes)
+}
+
+fn catenary_case(n: usize, sag0: f64, tol: f64) -> (f64, f64, f64) {
+    let (m, nodes) = level_catenary_model(n, 1e5, sag0);
     let st = StaticSettings {
         tol,
         ..Default::default()
@@ -350,23 +357,7 @@ fn bad_input_is_a_clear_error() {
 /// Newton iterations of the static solve of the level catenary of
 /// docs/theory/fem.md#elastic-catenary (n = 40 elements).
 fn catenary_iterations(sag0: f64) -> usize {
-    let w = 10.0;
-    let mut b = ModelBuilder::new(env_air());
-    let g = b
-        .add_group("rope", CableSection::new(1e5, w / DEFAULT_GRAVITY))
-        .unwrap();
-    let nodes = add_line(
-        &mut b,
-        [0.0, 0.0, 200.0],
-        [100.0, 0.0, 200.0],
-        40,
-        105.0,
-        g,
-        sag0,
-    );
-    b.fix(nodes[0], Dofs::ALL).unwrap();
-    b.fix(nodes[40], Dofs::ALL).unwrap();
-    let m = b.build().unwrap();
+    let (m, _) = level_catenary_model(40, 1e5, sag0);
     let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
     let h = &sol.report.residual_history;
     assert!(h.len() >= sol.report.iterations, "{:?}", sol.report);
@@ -445,14 +436,7 @@ fn discrete_catenary_to_round_off_for_any_axial_stiffness() {
     let (n, l, l0, w) = (20usize, 100.0, 105.0, 10.0);
     for ea in [1e4, 1e6, 1e8, 1e10] {
         let (hh, _v0, pts) = discrete_catenary(n, l, 0.0, l0, w, ea);
-        let mut b = ModelBuilder::new(env_air());
-        let g = b
-            .add_group("rope", CableSection::new(ea, w / DEFAULT_GRAVITY))
-            .unwrap();
-        let nodes = add_line(&mut b, [0.0, 0.0, 200.0], [l, 0.0, 200.0], n, l0, g, 15.0);
-        b.fix(nodes[0], Dofs::ALL).unwrap();
-        b.fix(nodes[n], Dofs::ALL).unwrap();
-        let m = b.build().unwrap();
+        let (m, nodes) = level_catenary_model(n, ea, 15.0);
         let st = StaticSettings {
             tol: 1e-12,
             ..Default::default()
