@@ -24,8 +24,10 @@
 //!   from the provider, finite differences element by element when a derivative is missing.
 //!
 //! **Statics** ([`solve_static`]): Newton on q(x, 0, t0) + ε_s·D·(x − x_ref) = 0 with load
-//! continuation s ∈ (0, 1], pseudo-viscous stabilisation, step cap and backtracking line
-//! search; converged when ‖r‖₂ ≤ ε_r·F_ref and ‖Δx‖∞ ≤ 1e-6·L_ref.
+//! continuation s ∈ (0, 1], pseudo-viscous stabilisation, step cap and an optional
+//! backtracking line search (off by default); converged when ‖r‖₂ ≤ ε_r·F_ref and
+//! ‖Δx‖∞ ≤ 1e-6·L_ref, or when ‖r‖₂ is at its round-off floor F_noise. Progress and stopping
+//! through [`solve_static_observed`].
 //!
 //! **Dynamics** ([`DynamicSolver`], HHT-α, α ∈ [0, 1/3], β = (1 + α)²/4, γ = ½ + α):
 //!

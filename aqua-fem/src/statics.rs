@@ -1,5 +1,6 @@
-//! Static equilibrium: Newton with load continuation, pseudo-viscous stabilisation and line
-//! search (docs/theory/fem.md#static-solver).
+//! Static equilibrium: Newton with load continuation, pseudo-viscous stabilisation, an
+//! optional line search (off by default) and a round-off convergence floor
+//! (docs/theory/fem.md#static-solver).
 
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;
