@@ -4,7 +4,8 @@
 use crate::build::{Built, Prescribed, build_with};
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
-use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene};
+use crate::overrides::Override;
+use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene, read_scene_with};
 use aqua_fem::{DynamicSettings, ExplicitSettings, StaticSettings};
 use std::path::Path;
 
@@ -57,6 +58,23 @@ impl Prepared {
 /// Reads, builds and plans a scene file: the validation of `aqua check` and `aqua run`.
 pub fn prepare(path: &Path) -> Result<Prepared> {
     prepare_scene(read_scene(path)?, Prescribed::AsScene)
+}
+
+/// [`prepare`] of the scene changed by `overrides` (`--set`, study ladders, sweep cases). An
+/// error in building the changed scene names the changes.
+pub fn prepare_with(path: &Path, overrides: &[Override]) -> Result<Prepared> {
+    let scene = read_scene_with(path, overrides)?;
+    if overrides.is_empty() {
+        return prepare_scene(scene, Prescribed::AsScene);
+    }
+    let changes = scene.overrides.join(" ");
+    prepare_scene(scene, Prescribed::AsScene).map_err(|e| {
+        if e.is_input() {
+            SimError::input(format!("{} (with --set {changes})", e.chain()))
+        } else {
+            e
+        }
+    })
 }
 
 /// Builds and plans a scene already read.

@@ -19,6 +19,7 @@
 //! ```
 
 use crate::error::{Result, SimError};
+use crate::overrides::Override;
 use aqua_env::SeaSpec;
 use aqua_fem::{DynamicSettings, ExplicitScheme, ExplicitSettings, MassMatrix, StaticSettings};
 use aqua_hydro::morison::MorisonModelId;
@@ -531,6 +532,9 @@ pub struct Scene {
     pub prescribed: Vec<Located<PrescribedSpec>>,
     /// Analysis settings.
     pub analysis: AnalysisSpec,
+    /// The `--set` changes applied to the file, as `PATH=VALUE` (crate::overrides).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub overrides: Vec<String>,
 }
 
 /// The raw file: typed where the schema is ours, tables with spans where keys are split
@@ -719,48 +723,115 @@ pub fn read_scene(path: &Path) -> Result<Scene> {
 /// Type-checks the text of a scene; `path` names it in messages, gives the default scene
 /// name and the folder that relative gmsh files are found in.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
-    let raw: RawScene =
-        toml::from_str(text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
+    parse_scene_with(text, path, &[])
+}
+
+/// Reads and type-checks a scene file changed by `overrides` (crate::overrides).
+pub fn read_scene_with(path: &Path, overrides: &[Override]) -> Result<Scene> {
+    parse_scene_with(&read_text(path)?, path, overrides)
+}
+
+/// [`parse_scene`] of the text changed by `overrides`, applied in order. The file itself must
+/// be valid; each change is then checked exactly like the file, and the first one that makes
+/// the scene invalid is named in the error. Messages keep the file's line numbers.
+pub fn parse_scene_with(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
+    let raw: RawScene = toml::from_str(text).map_err(|e| file_error(path, e))?;
     let ctx = Ctx { path, text };
-    let name = raw.name.clone().unwrap_or_else(|| {
-        path.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "scene".into())
-    });
-    if name.is_empty() || name.contains(['/', '\\']) {
-        return Err(SimError::input(format!(
-            "{}: name = \"{name}\": a non-empty scene name without path separators",
-            path.display()
-        )));
+    if overrides.is_empty() {
+        return ctx.scene(raw, Vec::new());
     }
-    Ok(Scene {
-        name,
-        path: path.to_path_buf(),
-        sea: raw.sea,
-        cage: ctx.each(&raw.cage, |i, line, mut t| {
-            let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
-            let params = ctx.typed("cage", i, line, "", t)?;
-            Ok(CageSpec { params, net_hydro })
-        })?,
-        panel: ctx.each(&raw.panel, |i, line, mut t| {
-            let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
-            let params = ctx.typed("panel", i, line, "", t)?;
-            Ok(PanelSpec { params, net_hydro })
-        })?,
-        line: ctx.each(&raw.line, |i, line, mut t| {
-            let hydro = ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
-            let params = ctx.typed("line", i, line, "", t)?;
-            Ok(LineSpec { params, hydro })
-        })?,
-        mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
-        group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
-        point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
-        fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,
-        prescribed: ctx.each(&raw.prescribed, |i, line, t| {
-            ctx.typed("prescribed", i, line, "", t)
-        })?,
-        analysis: raw.analysis,
-    })
+    // The file must stand on its own first, so that its own mistakes are reported as such.
+    ctx.scene(raw, Vec::new())?;
+    let mut table: Table = toml::from_str(text).map_err(|e| file_error(path, e))?;
+    let mut scene = None;
+    for (k, o) in overrides.iter().enumerate() {
+        let named = |msg: String| SimError::input(format!("{}: --set {o}: {msg}", path.display()));
+        o.apply(&mut table).map_err(named)?;
+        let edited = toml::to_string(&table).map_err(|e| named(e.to_string()))?;
+        let raw: RawScene = toml::from_str(&edited).map_err(|e| named(e.to_string()))?;
+        // Keep the file's spans so that messages and diagnostics give its line numbers.
+        let base: RawScene = toml::from_str(text).map_err(|e| file_error(path, e))?;
+        let raw = raw.with_spans_of(base);
+        let done = overrides[..=k].iter().map(|o| o.to_string()).collect();
+        let prefix = format!("{}: ", path.display());
+        scene = Some(ctx.scene(raw, done).map_err(|e| {
+            let msg = e.to_string();
+            named(msg.strip_prefix(&prefix).unwrap_or(&msg).to_string())
+        })?);
+    }
+    Ok(scene.expect("at least one override"))
+}
+
+fn file_error(path: &Path, e: toml::de::Error) -> SimError {
+    SimError::input(format!("{}: {e}", path.display()))
+}
+
+impl RawScene {
+    /// The same tables with the spans of `base` (the unchanged file; overrides never add or
+    /// remove array entries).
+    fn with_spans_of(mut self, base: RawScene) -> RawScene {
+        fn respan(list: &mut [Spanned<Table>], base: Vec<Spanned<Table>>) {
+            for (t, b) in list.iter_mut().zip(base) {
+                *t = Spanned::new(b.span(), std::mem::take(t.get_mut()));
+            }
+        }
+        respan(&mut self.cage, base.cage);
+        respan(&mut self.panel, base.panel);
+        respan(&mut self.line, base.line);
+        respan(&mut self.mesh, base.mesh);
+        respan(&mut self.group, base.group);
+        respan(&mut self.point, base.point);
+        respan(&mut self.fix, base.fix);
+        respan(&mut self.prescribed, base.prescribed);
+        self
+    }
+}
+
+impl Ctx<'_> {
+    /// The typed scene of a raw file.
+    fn scene(&self, raw: RawScene, overrides: Vec<String>) -> Result<Scene> {
+        let (ctx, path) = (self, self.path);
+        let name = raw.name.clone().unwrap_or_else(|| {
+            path.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "scene".into())
+        });
+        if name.is_empty() || name.contains(['/', '\\']) {
+            return Err(SimError::input(format!(
+                "{}: name = \"{name}\": a non-empty scene name without path separators",
+                path.display()
+            )));
+        }
+        Ok(Scene {
+            name,
+            path: path.to_path_buf(),
+            sea: raw.sea,
+            cage: ctx.each(&raw.cage, |i, line, mut t| {
+                let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
+                let params = ctx.typed("cage", i, line, "", t)?;
+                Ok(CageSpec { params, net_hydro })
+            })?,
+            panel: ctx.each(&raw.panel, |i, line, mut t| {
+                let net_hydro = ctx.net_hydro("panel", i, line, &mut t)?;
+                let params = ctx.typed("panel", i, line, "", t)?;
+                Ok(PanelSpec { params, net_hydro })
+            })?,
+            line: ctx.each(&raw.line, |i, line, mut t| {
+                let hydro = ctx.typed("line", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
+                let params = ctx.typed("line", i, line, "", t)?;
+                Ok(LineSpec { params, hydro })
+            })?,
+            mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
+            group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
+            point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
+            fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,
+            prescribed: ctx.each(&raw.prescribed, |i, line, t| {
+                ctx.typed("prescribed", i, line, "", t)
+            })?,
+            analysis: raw.analysis,
+            overrides,
+        })
+    }
 }
 
 #[cfg(test)]

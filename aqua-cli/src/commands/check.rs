@@ -12,11 +12,14 @@ pub struct Args {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Change a scene key: PATH=VALUE (as `aqua run --set`; repeatable).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<aqua_sim::Override>,
 }
 
 /// Run `aqua check`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let prep = aqua_sim::prepare(&a.scene)?;
+    let prep = aqua_sim::prepare_with(&a.scene, &a.set)?;
     let report = aqua_sim::check::report(&prep)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

@@ -8,10 +8,11 @@
 use crate::interrupted;
 use anyhow::Context;
 use aqua_fem::{StaticProgress, StepReport};
+use aqua_sim::Override;
 use aqua_sim::files::{RunFiles, write_component_table};
 use aqua_sim::{Diagnostic, Ending, Frame, Observer, Prepared, RunRecord, Simulation};
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Flags of `aqua run`.
@@ -25,6 +26,17 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Change a scene key: PATH=VALUE, e.g. `--set analysis.dynamic.dt=0.05`,
+    /// `--set cage.0.element_length=5`, `--set line.*.segments=40` (repeatable; recorded in
+    /// run.json).
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub set: Vec<Override>,
+}
+
+/// What `run_scene` needs of the flags.
+struct RunOpts<'a> {
+    out: &'a Path,
+    quiet: bool,
 }
 
 /// The run's observer: writes every frame, prints warnings, draws the progress bar and
@@ -84,8 +96,24 @@ impl Observer for Terminal<'_> {
 
 /// Run `aqua run`.
 pub fn run(a: Args) -> anyhow::Result<()> {
+    match run_scene(&a.scene, &a.set, &a.out, a.quiet)? {
+        Ending::Interrupted => std::process::exit(130),
+        _ => Ok(()),
+    }
+}
+
+/// Runs a scene changed by `set` into `out`: the whole of `aqua run` but the exit on Ctrl-C
+/// (the caller's). A failed solve is an error; an interruption returns
+/// [`Ending::Interrupted`] after saying what was kept.
+pub fn run_scene(
+    scene: &Path,
+    set: &[Override],
+    out: &Path,
+    quiet: bool,
+) -> anyhow::Result<Ending> {
+    let a = RunOpts { out, quiet };
     let t0 = Instant::now();
-    let prep = aqua_sim::prepare(&a.scene)?;
+    let prep = aqua_sim::prepare_with(scene, set)?;
     for d in prep.diagnostics() {
         eprintln!("{d}");
     }
@@ -93,7 +121,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     for d in sim.diagnostics() {
         eprintln!("{d}");
     }
-    let files = RunFiles::create(&a.out, &prep.scene.name, &prep.built)?;
+    let files = RunFiles::create(a.out, &prep.scene.name, &prep.built)?;
     if prep.built.sea.has_waves() && prep.plan.dynamics.is_some() {
         // The component table makes the run reproducible exactly
         // (docs/theory/environment.md#summation).
@@ -115,7 +143,8 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             if !a.quiet {
                 print_final(&files, &record);
             }
-            Ok(result?)
+            result?;
+            Ok(Ending::Completed)
         }
         Ending::Interrupted => {
             eprintln!(
@@ -124,7 +153,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
                 files.steps_written,
                 files.pvd_path().display()
             );
-            std::process::exit(130);
+            Ok(Ending::Interrupted)
         }
         Ending::Failed => Err(anyhow::Error::from(result.err().unwrap_or_else(|| {
             aqua_sim::SimError::Coupling("failed without an error".into())
@@ -150,6 +179,7 @@ fn run_json(
     let plan = &prep.plan;
     serde_json::json!({
         "scene": &prep.scene,
+        "overrides": &prep.scene.overrides,
         "resolved": {
             "mesh": built.mesh.summary(),
             "sea": &built.sea_summary,
