@@ -24,6 +24,11 @@ enum Command {
     Check(commands::check::Args),
     /// Run a scene: statics and/or dynamics, ParaView series, summary.csv, run.json.
     Run(commands::run::Args),
+    /// Run a scene over ladders of settings; estimate converged values, errors and the
+    /// cheapest setting within a tolerance.
+    Study(commands::study::Args),
+    /// Draw PNG pictures of a run folder (time series, static convergence).
+    Plot(commands::plot::Args),
     /// Compare screen (θ, Cd, Cl) and Morison (Re, Cn, Ct) coefficient models.
     Coeffs(commands::coeffs::Args),
 }
@@ -61,6 +66,8 @@ fn main() -> ExitCode {
         Command::Check(a) => commands::check::run(a),
         Command::Run(a) => commands::run::run(a),
         Command::Coeffs(a) => commands::coeffs::run(a),
+        Command::Study(a) => commands::study::run(a),
+        Command::Plot(a) => commands::plot::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

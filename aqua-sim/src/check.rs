@@ -2,6 +2,7 @@
 //! physics are active and which are skipped, and a cost estimate — of a scene that passed the
 //! same validation as a run ([`crate::plan::prepare`]).
 
+use crate::build::Built;
 use crate::diagnostic::Diagnostic;
 use crate::error::Result;
 use crate::plan::Prepared;
@@ -200,6 +201,14 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
     ]
 }
 
+/// The unknowns of the model: its DOFs that are neither fixed nor prescribed.
+pub fn free_dofs(built: &Built) -> usize {
+    let model = &built.model;
+    (0..model.n_nodes())
+        .map(|i| (0..3).filter(|&k| !model.is_constrained(i, k)).count())
+        .sum()
+}
+
 /// The cost estimate: unknowns, elements, steps and a wall-time guess.
 fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let built = &prep.built;
@@ -207,10 +216,7 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let kind = prep.plan.kind;
     let dynamic = kind != AnalysisKind::Static;
     let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
-    let model = &built.model;
-    let free = (0..model.n_nodes())
-        .map(|i| (0..3).filter(|&k| !model.is_constrained(i, k)).count())
-        .sum::<usize>();
+    let free = free_dofs(built);
     let steps = if dynamic {
         (t_end / dt).ceil() as usize
     } else {

@@ -53,6 +53,14 @@ pub enum SimError {
         #[source]
         source: std::io::Error,
     },
+    /// A picture could not be drawn or written.
+    #[error("drawing {}: {message}", path.display())]
+    Plot {
+        /// The PNG file.
+        path: PathBuf,
+        /// What the plotting library said.
+        message: String,
+    },
     /// An output file (VTK series) could not be written.
     #[error("writing the output series")]
     Output(#[source] Box<aqua_mesh::MeshError>),

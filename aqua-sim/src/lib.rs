@@ -31,11 +31,13 @@ pub mod error;
 pub mod files;
 pub mod overrides;
 pub mod plan;
+pub mod plot;
 pub mod post;
 pub mod provider;
 pub mod run;
 pub mod scene;
 pub mod solvers;
+pub mod study;
 
 pub use build::{Built, Prescribed, build};
 pub use coupling::Coupling;

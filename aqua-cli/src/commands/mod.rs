@@ -3,5 +3,7 @@
 pub mod check;
 pub mod coeffs;
 pub mod mesh;
+pub mod plot;
 pub mod run;
+pub mod study;
 pub mod waves;

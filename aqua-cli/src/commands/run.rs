@@ -31,6 +31,9 @@ pub struct Args {
     /// run.json).
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub set: Vec<Override>,
+    /// Also draw PNG pictures into OUT/plots (as `aqua plot OUT`).
+    #[arg(long)]
+    pub plot: bool,
 }
 
 /// What `run_scene` needs of the flags.
@@ -96,7 +99,14 @@ impl Observer for Terminal<'_> {
 
 /// Run `aqua run`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    match run_scene(&a.scene, &a.set, &a.out, a.quiet)? {
+    let ending = run_scene(&a.scene, &a.set, &a.out, a.quiet)?;
+    if a.plot {
+        let pictures = aqua_sim::plot::plot_run(&a.out)?;
+        if !a.quiet {
+            crate::commands::plot::print_pictures(&pictures);
+        }
+    }
+    match ending {
         Ending::Interrupted => std::process::exit(130),
         _ => Ok(()),
     }

@@ -1,0 +1,444 @@
+//! Pictures of a run and of a study, as PNG files drawn in pure Rust (plotters' bitmap backend,
+//! text with the Hack font embedded by `epaint_default_fonts`: no C library, no system fonts).
+//!
+//! [`plot_run`] draws the time series of a run folder's `summary.csv` (net force and
+//! reactions, largest tension per group, volume ratio, line-end loads) and the static solver's
+//! convergence from `run.json`; [`plot_study`] draws a study's error against its cost. Each
+//! function returns what it plotted (the series' extremes), so tests compare the plotted data,
+//! not pixels, with the tables.
+
+use crate::error::{Result, SimError};
+use crate::study::Study;
+use plotters::coord::combinators::IntoLogRange;
+use plotters::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+/// Width and height of every picture [px].
+pub const SIZE: (u32, u32) = (1200, 720);
+
+/// One plotted curve.
+#[derive(Debug, Clone, Serialize)]
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// (x, y) points.
+    #[serde(skip)]
+    pub points: Vec<(f64, f64)>,
+    /// Smallest y plotted.
+    pub min: f64,
+    /// Largest y plotted.
+    pub max: f64,
+}
+
+impl Series {
+    /// A series with its extremes.
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        let min = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let max = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+        Series {
+            name: name.into(),
+            points,
+            min,
+            max,
+        }
+    }
+}
+
+/// A picture written.
+#[derive(Debug, Clone, Serialize)]
+pub struct Picture {
+    /// The PNG file.
+    pub path: PathBuf,
+    /// Its title.
+    pub title: String,
+    /// What it shows.
+    pub series: Vec<Series>,
+}
+
+fn font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The embedded font is valid TTF; if it were not, text would be missing, not wrong.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::HACK_REGULAR,
+        );
+    });
+}
+
+fn plot_err(path: &Path) -> impl Fn(String) -> SimError + '_ {
+    move |message| SimError::Plot {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+/// Axis range with a margin; a flat series gets a band around its value.
+fn range(lo: f64, hi: f64) -> (f64, f64) {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return (0.0, 1.0);
+    }
+    let span = hi - lo;
+    if span <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
+        let pad = 0.05 * lo.abs().max(1.0);
+        return (lo - pad, hi + pad);
+    }
+    (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+/// A line chart of `series` against x, linear axes, legend top right.
+pub fn line_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: Vec<Series>,
+) -> Result<Picture> {
+    font();
+    let err = plot_err(path);
+    let pts = || series.iter().flat_map(|s| s.points.iter());
+    let (x0, x1) = range(
+        pts().map(|p| p.0).fold(f64::INFINITY, f64::min),
+        pts().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (y0, y1) = range(
+        series.iter().map(|s| s.min).fold(f64::INFINITY, f64::min),
+        series
+            .iter()
+            .map(|s| s.max)
+            .fold(f64::NEG_INFINITY, f64::max),
+    );
+    {
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 26))
+            .margin(20)
+            .x_label_area_size(55)
+            .y_label_area_size(110)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        for (i, s) in series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    color.stroke_width(2),
+                ))
+                .map_err(|e| err(e.to_string()))?
+                .label(s.name.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(Picture {
+        path: path.to_path_buf(),
+        title: title.to_string(),
+        series,
+    })
+}
+
+/// A run folder's `summary.csv` read back: column names and rows.
+#[derive(Debug, Clone, Default)]
+pub struct SummaryTable {
+    /// Column names.
+    pub columns: Vec<String>,
+    /// Rows.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl SummaryTable {
+    /// Reads `summary.csv`.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            what: "reading",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let mut lines = text.lines();
+        let columns: Vec<String> = lines
+            .next()
+            .unwrap_or_default()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        let mut rows = Vec::new();
+        for (k, line) in lines.enumerate() {
+            let row: Option<Vec<f64>> = line.split(',').map(|v| v.parse().ok()).collect();
+            match row {
+                Some(r) if r.len() == columns.len() => rows.push(r),
+                _ => {
+                    return Err(SimError::input(format!(
+                        "{}: line {}: expected {} numbers separated by commas",
+                        path.display(),
+                        k + 2,
+                        columns.len()
+                    )));
+                }
+            }
+        }
+        Ok(SummaryTable { columns, rows })
+    }
+
+    /// The (t, column) points of a column.
+    pub fn series(&self, column: &str) -> Option<Series> {
+        let t = self.columns.iter().position(|c| c == "t")?;
+        let k = self.columns.iter().position(|c| c == column)?;
+        Some(Series::new(
+            column,
+            self.rows.iter().map(|r| (r[t], r[k])).collect(),
+        ))
+    }
+
+    fn matching(&self, keep: impl Fn(&str) -> bool) -> Vec<Series> {
+        self.columns
+            .iter()
+            .filter(|c| keep(c))
+            .filter_map(|c| self.series(c))
+            .collect()
+    }
+}
+
+/// Draws the pictures of a run folder into `dir/plots/` and returns them: time series when the
+/// run has more than one output step, the static convergence when `run.json` records one.
+pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
+    let table = SummaryTable::read(&dir.join("summary.csv"))?;
+    let out = dir.join("plots");
+    std::fs::create_dir_all(&out).map_err(|source| SimError::Io {
+        what: "creating",
+        path: out.clone(),
+        source,
+    })?;
+    let mut pictures = Vec::new();
+    if table.rows.len() > 1 {
+        let groups: [(&str, &str, &str, Box<dyn Fn(&str) -> bool>); 4] = [
+            (
+                "forces.png",
+                "Net drag and support reactions",
+                "force [N]",
+                Box::new(|c| c.ends_with("_net") || matches!(c, "Rx" | "Ry" | "Rz")),
+            ),
+            (
+                "tensions.png",
+                "Largest tension per group",
+                "tension [N]",
+                Box::new(|c| c.starts_with("Tmax_")),
+            ),
+            (
+                "line_ends.png",
+                "Line-end loads (anchor and fairlead reactions)",
+                "force [N]",
+                Box::new(|c| c.ends_with("_anchor_reaction") || c.ends_with("_fairlead_reaction")),
+            ),
+            (
+                "volume.png",
+                "Enclosed net volume relative to the undeformed net",
+                "volume ratio [-]",
+                Box::new(|c| c == "volume_ratio"),
+            ),
+        ];
+        for (file, title, y, keep) in groups {
+            let mut series = table.matching(keep);
+            if file == "volume.png" {
+                // An open net (no enclosed volume) has nothing to show.
+                series.retain(|s| s.max > 0.0);
+            }
+            if !series.is_empty() {
+                pictures.push(line_chart(&out.join(file), title, "time t [s]", y, series)?);
+            }
+        }
+    }
+    if let Some(history) = static_history(&dir.join("run.json")) {
+        let s = Series::new(
+            "‖r‖ / F_ref",
+            history
+                .iter()
+                .enumerate()
+                .map(|(i, r)| (i as f64, *r))
+                .filter(|p| p.1 > 0.0)
+                .collect(),
+        );
+        if s.points.len() > 1 {
+            pictures.push(log_y_chart(
+                &out.join("static_convergence.png"),
+                "Static solver: relative residual per Newton iteration",
+                "iteration",
+                "relative residual [-]",
+                s,
+            )?);
+        }
+    }
+    Ok(pictures)
+}
+
+fn static_history(path: &Path) -> Option<Vec<f64>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    v.get("static_residual_history")?
+        .as_array()?
+        .iter()
+        .map(|x| x.as_f64())
+        .collect()
+}
+
+/// One series on a logarithmic y axis.
+fn log_y_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    s: Series,
+) -> Result<Picture> {
+    font();
+    let err = plot_err(path);
+    let x1 = s.points.iter().map(|p| p.0).fold(1.0, f64::max);
+    let (y0, y1) = (s.min * 0.5, s.max * 2.0);
+    {
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 26))
+            .margin(20)
+            .x_label_area_size(55)
+            .y_label_area_size(110)
+            .build_cartesian_2d(0.0..x1, (y0..y1).log_scale())
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .draw_series(LineSeries::new(
+                s.points.iter().copied(),
+                BLUE.stroke_width(2),
+            ))
+            .map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(Picture {
+        path: path.to_path_buf(),
+        title: title.to_string(),
+        series: vec![s],
+    })
+}
+
+/// Draws a study's largest relative error over its metrics against the wall time of each run
+/// (log–log), the tolerance as a line and the recommended run ringed, into `path`.
+pub fn plot_study(study: &Study, path: &Path) -> Result<Picture> {
+    font();
+    let err = plot_err(path);
+    let points: Vec<(f64, f64, String, bool)> = study
+        .runs
+        .iter()
+        .filter_map(|r| {
+            let worst = r.errors.iter().flatten().copied().fold(f64::NAN, f64::max);
+            (worst.is_finite() && r.wall_s > 0.0).then(|| {
+                (
+                    r.wall_s,
+                    worst.max(1e-12),
+                    r.setting.join(", "),
+                    study.recommended == Some(r.index),
+                )
+            })
+        })
+        .collect();
+    let series = Series::new(
+        "largest relative error",
+        points.iter().map(|p| (p.0, p.1)).collect(),
+    );
+    let xs = || points.iter().map(|p| p.0);
+    let (x0, x1) = (
+        xs().fold(f64::INFINITY, f64::min).min(1.0) * 0.5,
+        xs().fold(0.0, f64::max).max(1e-3) * 2.0,
+    );
+    let tol = study.tolerance;
+    let y0 = series.min.min(tol).max(1e-12) * 0.3;
+    let y1 = series.max.max(tol).max(y0 * 10.0) * 3.0;
+    let axes = study
+        .axes
+        .iter()
+        .map(|a| a.path.as_str())
+        .collect::<Vec<_>>()
+        .join(", ");
+    {
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!("Accuracy against cost ({axes})"),
+                ("sans-serif", 24),
+            )
+            .margin(20)
+            .x_label_area_size(55)
+            .y_label_area_size(110)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc("wall time of the run [s]")
+            .y_desc("largest relative error over the metrics [-]")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .draw_series(LineSeries::new(
+                vec![(x0, tol), (x1, tol)],
+                RED.stroke_width(2),
+            ))
+            .map_err(|e| err(e.to_string()))?
+            .label(format!("tolerance {:.3} %", 100.0 * tol))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], RED.stroke_width(3)));
+        chart
+            .draw_series(points.iter().map(|(x, y, label, best)| {
+                let style = if *best { GREEN.filled() } else { BLUE.filled() };
+                EmptyElement::at((*x, *y))
+                    + Circle::new((0, 0), if *best { 9 } else { 6 }, style)
+                    + Text::new(label.clone(), (10, -8), ("sans-serif", 15))
+            }))
+            .map_err(|e| err(e.to_string()))?
+            .label("run (green: recommended)")
+            .legend(|(x, y)| Circle::new((x + 12, y), 6, BLUE.filled()));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(Picture {
+        path: path.to_path_buf(),
+        title: "accuracy against cost".into(),
+        series: vec![series],
+    })
+}
