@@ -685,6 +685,9 @@ pub fn richardson(values: &[Value], f: &[Option<f64>]) -> std::result::Result<(f
     };
     let r = (r1 * r2).sqrt();
     let (e12, e23) = (f1 - f2, f2 - f3);
+    if e12.abs().max(e23.abs()) <= 1e-9 * f3.abs() {
+        return Err("converged: the runs agree to round-off".into());
+    }
     if e23 == 0.0 {
         return if e12 == 0.0 {
             Ok((f64::INFINITY, 0.0))
