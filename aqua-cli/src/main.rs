@@ -27,6 +27,11 @@ enum Command {
     /// Run a scene over ladders of settings; estimate converged values, errors and the
     /// cheapest setting within a tolerance.
     Study(commands::study::Args),
+    /// Run the load cases of a case file here (--local), or emit them for GNU parallel or a
+    /// Slurm array.
+    Sweep(commands::sweep::Args),
+    /// Merge the run folders under a directory into one table; print the governing cases.
+    Collect(commands::collect::Args),
     /// Draw PNG pictures of a run folder (time series, static convergence).
     Plot(commands::plot::Args),
     /// Compare screen (θ, Cd, Cl) and Morison (Re, Cn, Ct) coefficient models.
@@ -68,6 +73,8 @@ fn main() -> ExitCode {
         Command::Coeffs(a) => commands::coeffs::run(a),
         Command::Study(a) => commands::study::run(a),
         Command::Plot(a) => commands::plot::run(a),
+        Command::Sweep(a) => commands::sweep::run(a),
+        Command::Collect(a) => commands::collect::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -38,6 +38,7 @@ pub mod run;
 pub mod scene;
 pub mod solvers;
 pub mod study;
+pub mod sweep;
 
 pub use build::{Built, Prescribed, build};
 pub use coupling::Coupling;

@@ -39,7 +39,6 @@ pub const ALIASES: &[(&str, &[&str])] = &[
         &["cage.*.element_length", "panel.*.element_length"],
     ),
     ("segments", &["line.*.segments"]),
-    ("current_speed", &["sea.current.speed"]),
 ];
 
 /// The paths a name stands for: an alias's paths, or the name itself.

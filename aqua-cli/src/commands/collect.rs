@@ -1,0 +1,55 @@
+//! `aqua collect DIR`: merges every run folder under DIR (the cases of `aqua sweep`, or any
+//! `aqua run` outputs) into one CSV table ([`aqua_sim::sweep::collect`]) and prints the
+//! governing case of every summary column.
+
+use std::path::PathBuf;
+
+/// Flags of `aqua collect`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Folder holding one sub-folder per run (case_NNNN/ or any run output with run.json).
+    pub dir: PathBuf,
+    /// Table to write (default: DIR/collected.csv).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Run `aqua collect`.
+pub fn run(a: Args) -> anyhow::Result<()> {
+    let c = aqua_sim::sweep::collect(&a.dir)?;
+    let out = a.out.unwrap_or_else(|| a.dir.join("collected.csv"));
+    std::fs::write(&out, c.csv()).map_err(|e| anyhow::anyhow!("writing {}: {e}", out.display()))?;
+    println!("{:<12} {:<11} {:>9}  name", "folder", "status", "wall [s]");
+    for r in &c.runs {
+        println!(
+            "{:<12} {:<11} {:>9.2}  {}{}",
+            r.folder,
+            r.status,
+            r.wall_time_s,
+            r.name,
+            r.error
+                .as_ref()
+                .map(|e| format!("\n             error: {e}"))
+                .unwrap_or_default()
+        );
+    }
+    println!();
+    println!(
+        "{:<44} {:>15} {:<12} {:>15} {:<12}",
+        "governing cases", "largest max", "in", "smallest min", "in"
+    );
+    for (col, hi, lo) in c.governing() {
+        println!(
+            "{:<44} {:>15.6e} {:<12} {:>15.6e} {:<12}",
+            col, hi.1, hi.0, lo.1, lo.0
+        );
+    }
+    let done = c.runs.iter().filter(|r| r.status == "completed").count();
+    println!(
+        "{} runs ({} completed) merged into {} (min, max, mean, std of each summary column over the dynamic part)",
+        c.runs.len(),
+        done,
+        out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,277 @@
+//! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_sim::sweep`]), run on this
+//! machine (`--local`, N child processes at a time on a rayon pool), or handed to GNU parallel
+//! (`--emit parallel`) or a Slurm job array (`--emit slurm`); `--case K` runs one case and is
+//! what every engine calls. Without a mode it lists the cases.
+
+use crate::commands::run::run_scene;
+use crate::{InputError, interrupted};
+use anyhow::Context;
+use aqua_sim::Ending;
+use aqua_sim::sweep::{CaseRecord, Sweep};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+/// Where the emitted commands go.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Emit {
+    /// One command line per case, for GNU parallel (`| parallel --jobs N`).
+    Parallel,
+    /// A Slurm job-array script (`> cases.sbatch; sbatch cases.sbatch`).
+    Slurm,
+}
+
+/// Flags of `aqua sweep`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Case file (TOML): scene, [vary], [[case]].
+    pub cases: PathBuf,
+    /// Run every case on this machine, each its own process.
+    #[arg(long, conflicts_with_all = ["emit", "case"])]
+    pub local: bool,
+    /// Cases run at a time with --local.
+    #[arg(long, default_value_t = 1, requires = "local")]
+    pub jobs: usize,
+    /// Print the commands for GNU parallel or a Slurm array script instead of running.
+    #[arg(long, value_enum, conflicts_with = "case")]
+    pub emit: Option<Emit>,
+    /// Run case K only (what --local, GNU parallel and Slurm call).
+    #[arg(long, value_name = "K")]
+    pub case: Option<usize>,
+    /// Folder for the case folders (default: the case file's `out`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Run `aqua sweep`.
+pub fn run(a: Args) -> anyhow::Result<()> {
+    let mut sweep = Sweep::read(&a.cases)?;
+    if let Some(out) = &a.out {
+        sweep.out = std::path::absolute(out)?;
+    }
+    if let Some(k) = a.case {
+        return run_case(&sweep, k);
+    }
+    match a.emit {
+        Some(Emit::Parallel) => {
+            for k in 0..sweep.cases.len() {
+                println!("{}", case_command(&sweep, &a, &k.to_string())?);
+            }
+            eprintln!(
+                "# {} cases; run them with: aqua sweep {} --emit parallel | parallel --jobs N",
+                sweep.cases.len(),
+                a.cases.display()
+            );
+            Ok(())
+        }
+        Some(Emit::Slurm) => {
+            print!("{}", slurm_script(&sweep, &a)?);
+            Ok(())
+        }
+        None if a.local => run_local(&sweep, a.jobs),
+        None => {
+            list(&sweep);
+            Ok(())
+        }
+    }
+}
+
+fn list(sweep: &Sweep) {
+    println!(
+        "{} cases of {} into {}:",
+        sweep.cases.len(),
+        sweep.scene.display(),
+        sweep.out.display()
+    );
+    for c in &sweep.cases {
+        println!("  {:>4}  {}", c.index, c.name);
+    }
+    println!("run them with --local [--jobs N], or emit them with --emit parallel | --emit slurm");
+}
+
+/// A word for a POSIX shell: single-quoted unless it is plainly safe.
+fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// `aqua sweep FILE --case K [--out DIR]` with absolute paths, for another process or host
+/// (`k` may be a shell expression such as `"$SLURM_ARRAY_TASK_ID"`, passed through as is).
+fn case_command(sweep: &Sweep, a: &Args, k: &str) -> anyhow::Result<String> {
+    let exe = std::env::current_exe().context("finding the aqua executable")?;
+    let mut cmd = format!(
+        "{} sweep {} --case {k}",
+        shell_word(&exe.to_string_lossy()),
+        shell_word(&sweep.file.to_string_lossy())
+    );
+    if a.out.is_some() {
+        cmd += &format!(" --out {}", shell_word(&sweep.out.to_string_lossy()));
+    }
+    Ok(cmd)
+}
+
+/// A Slurm job-array script: one case per array task.
+fn slurm_script(sweep: &Sweep, a: &Args) -> anyhow::Result<String> {
+    let stem = sweep
+        .file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "sweep".into());
+    let job: String = stem
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    Ok(format!(
+        "#!/bin/bash\n\
+         # {n} load cases of {scene}: one Slurm array task per case.\n\
+         # Submit with: sbatch {job}.sbatch   (collect afterwards: aqua collect {out})\n\
+         #SBATCH --job-name=aqua-{job}\n\
+         #SBATCH --array=0-{last}\n\
+         #SBATCH --ntasks=1\n\
+         #SBATCH --cpus-per-task=1\n\
+         #SBATCH --output=aqua-{job}-%A_%a.log\n\
+         set -euo pipefail\n\
+         : \"${{SLURM_ARRAY_TASK_ID:?run this script with sbatch (or set SLURM_ARRAY_TASK_ID)}}\"\n\
+         exec {cmd}\n",
+        n = sweep.cases.len(),
+        scene = sweep.scene.display(),
+        out = sweep.out.display(),
+        last = sweep.cases.len() - 1,
+        cmd = case_command(sweep, a, "\"$SLURM_ARRAY_TASK_ID\"")?,
+    ))
+}
+
+/// Runs case `k` into its folder and writes its `case.json`.
+fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
+    let Some(case) = sweep.cases.get(k) else {
+        return Err(InputError::new(format!(
+            "--case {k}: {} has {} cases (0..{})",
+            sweep.file.display(),
+            sweep.cases.len(),
+            sweep.cases.len() - 1
+        ))
+        .into());
+    };
+    let dir = sweep.case_dir(k);
+    let t0 = Instant::now();
+    let result = run_scene(&sweep.scene, &case.overrides, &dir, true);
+    let (status, error) = match &result {
+        Ok(e) => (e.as_str(), None),
+        Err(e) => (Ending::Failed.as_str(), Some(format!("{e:#}"))),
+    };
+    let record = CaseRecord {
+        index: k,
+        name: case.name.clone(),
+        set: case.overrides.iter().map(|o| o.to_string()).collect(),
+        status: status.to_string(),
+        error,
+        wall_time_s: t0.elapsed().as_secs_f64(),
+    };
+    std::fs::create_dir_all(&dir)?;
+    let path = dir.join("case.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&record)?)
+        .with_context(|| format!("writing {}", path.display()))?;
+    match result? {
+        Ending::Interrupted => std::process::exit(130),
+        _ => Ok(()),
+    }
+}
+
+/// Runs every case as its own `aqua sweep --case K` process, `jobs` at a time; a failed case
+/// does not stop the others. Each case's output goes to `case_NNNN/aqua.log`.
+fn run_local(sweep: &Sweep, jobs: usize) -> anyhow::Result<()> {
+    if jobs == 0 {
+        return Err(InputError::new("--jobs 0: run at least one case at a time").into());
+    }
+    let exe = std::env::current_exe().context("finding the aqua executable")?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .context("starting the worker threads")?;
+    let n = sweep.cases.len();
+    let t0 = Instant::now();
+    eprintln!("{n} cases, {jobs} at a time, into {}", sweep.out.display());
+    let outcomes: Vec<String> = pool.install(|| {
+        sweep
+            .cases
+            .par_iter()
+            .with_max_len(1)
+            .map(|c| {
+                if interrupted() {
+                    return "not run".to_string();
+                }
+                let status = run_child(&exe, sweep, c.index);
+                eprintln!("case {} of {n} ({}): {status}", c.index, c.name);
+                status
+            })
+            .collect()
+    });
+    let failed = outcomes
+        .iter()
+        .filter(|s| !s.starts_with("completed"))
+        .count();
+    eprintln!(
+        "{} of {n} cases completed in {:.1} s; aqua collect {} merges them",
+        n - failed,
+        t0.elapsed().as_secs_f64(),
+        sweep.out.display()
+    );
+    if interrupted() {
+        std::process::exit(130);
+    }
+    if failed > 0 {
+        anyhow::bail!(
+            "{failed} of {n} cases did not complete: see case_NNNN/aqua.log and case.json in {}",
+            sweep.out.display()
+        );
+    }
+    Ok(())
+}
+
+/// One case as a child process; returns its status line.
+fn run_child(exe: &Path, sweep: &Sweep, k: usize) -> String {
+    let dir = sweep.case_dir(k);
+    let log =
+        std::fs::create_dir_all(&dir).and_then(|_| std::fs::File::create(dir.join("aqua.log")));
+    let log = match log {
+        Ok(f) => f,
+        Err(e) => return format!("failed: cannot write {}: {e}", dir.display()),
+    };
+    // A case.json of an earlier sweep must not pass for this run's.
+    let _ = std::fs::remove_file(dir.join("case.json"));
+    let err_log = match log.try_clone() {
+        Ok(f) => f,
+        Err(e) => return format!("failed: {e}"),
+    };
+    let status = Command::new(exe)
+        .arg("sweep")
+        .arg(&sweep.file)
+        .arg("--case")
+        .arg(k.to_string())
+        .arg("--out")
+        .arg(&sweep.out)
+        .stdin(Stdio::null())
+        .stdout(log)
+        .stderr(err_log)
+        .status();
+    let record: Option<CaseRecord> = std::fs::read_to_string(dir.join("case.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok());
+    match (status, record) {
+        (Ok(_), Some(r)) => format!(
+            "{} in {:.2} s{}",
+            r.status,
+            r.wall_time_s,
+            r.error.map(|e| format!(" ({e})")).unwrap_or_default()
+        ),
+        (Ok(s), None) => format!("failed: exit status {s}, no case.json"),
+        (Err(e), _) => format!("failed: cannot start {}: {e}", exe.display()),
+    }
+}
