@@ -220,9 +220,18 @@ impl SummaryTable {
     }
 }
 
+/// A time-series picture: file, title, y label and which columns it shows.
+type TimePicture = (&'static str, &'static str, &'static str, fn(&str) -> bool);
+
 /// Draws the pictures of a run folder into `dir/plots/` and returns them: time series when the
 /// run has more than one output step, the static convergence when `run.json` records one.
 pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
+    if !dir.join("summary.csv").is_file() {
+        return Err(SimError::input(format!(
+            "{}: no summary.csv: give the output folder of `aqua run` (its --out)",
+            dir.display()
+        )));
+    }
     let table = SummaryTable::read(&dir.join("summary.csv"))?;
     let out = dir.join("plots");
     std::fs::create_dir_all(&out).map_err(|source| SimError::Io {
@@ -232,30 +241,30 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
     })?;
     let mut pictures = Vec::new();
     if table.rows.len() > 1 {
-        let groups: [(&str, &str, &str, Box<dyn Fn(&str) -> bool>); 4] = [
+        let groups: [TimePicture; 4] = [
             (
                 "forces.png",
                 "Net drag and support reactions",
                 "force [N]",
-                Box::new(|c| c.ends_with("_net") || matches!(c, "Rx" | "Ry" | "Rz")),
+                |c| c.ends_with("_net") || matches!(c, "Rx" | "Ry" | "Rz"),
             ),
             (
                 "tensions.png",
                 "Largest tension per group",
                 "tension [N]",
-                Box::new(|c| c.starts_with("Tmax_")),
+                |c| c.starts_with("Tmax_"),
             ),
             (
                 "line_ends.png",
                 "Line-end loads (anchor and fairlead reactions)",
                 "force [N]",
-                Box::new(|c| c.ends_with("_anchor_reaction") || c.ends_with("_fairlead_reaction")),
+                |c| c.ends_with("_anchor_reaction") || c.ends_with("_fairlead_reaction"),
             ),
             (
                 "volume.png",
                 "Enclosed net volume relative to the undeformed net",
                 "volume ratio [-]",
-                Box::new(|c| c == "volume_ratio"),
+                |c| c == "volume_ratio",
             ),
         ];
         for (file, title, y, keep) in groups {

@@ -1,7 +1,7 @@
 //! The accuracy–speed study (`aqua study`): one scene run over ladders of numerical settings
 //! (element length, time step, scheme, …), the converged value of each metric estimated from
 //! the ladders, every run's error against it and its cost, and the cheapest setting whose
-//! errors are all within a tolerance (docs/guide/study.md).
+//! errors are all within a tolerance (README.md#choosing-resolution-aqua-study).
 //!
 //! **Settings.** Each `--vary PATH=v1,v2,…` is a ladder, listed from coarse to fine; the runs
 //! are the full factorial product of the ladders (the last ladder varies fastest) and the last
@@ -815,7 +815,7 @@ mod tests {
     #[test]
     fn richardson_recovers_order_and_limit_of_a_power_law() {
         // f(h) = 3 + 2 h^1.7 on h = 0.4, 0.2, 0.1: exact for the three-level model.
-        let h = [0.4, 0.2, 0.1];
+        let h: [f64; 3] = [0.4, 0.2, 0.1];
         let f: Vec<Option<f64>> = h.iter().map(|h| Some(3.0 + 2.0 * h.powf(1.7))).collect();
         let (p, d) = richardson(&floats(&h), &f).unwrap();
         assert!((p - 1.7).abs() < 1e-9, "{p}");

@@ -308,11 +308,28 @@ pub struct Collection {
     pub columns: Vec<String>,
 }
 
+/// The governing cases of one summary column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Governing {
+    /// The column.
+    pub column: String,
+    /// Folder and value of the largest maximum.
+    pub largest: (String, f64),
+    /// Folder and value of the smallest minimum.
+    pub smallest: (String, f64),
+}
+
 /// Columns of `summary.csv` that are bookkeeping, not results.
 const NOT_RESULTS: &[&str] = &["t", "newton_iterations", "dt"];
 
 /// Reads every sub-folder of `dir` that holds `case.json` or `run.json`.
 pub fn collect(dir: &Path) -> Result<Collection> {
+    if !dir.is_dir() {
+        return Err(SimError::input(format!(
+            "{}: no such folder (give the folder that holds the case_NNNN or run folders)",
+            dir.display()
+        )));
+    }
     let entries = std::fs::read_dir(dir).map_err(|source| SimError::Io {
         what: "reading the folder",
         path: dir.to_path_buf(),
@@ -489,10 +506,9 @@ impl Collection {
         out
     }
 
-    /// Per summary column: the run with the largest maximum and the one with the smallest
-    /// minimum (the governing cases), as (column, (folder, value), (folder, value)); columns
-    /// that are zero in every run are left out.
-    pub fn governing(&self) -> Vec<(String, (String, f64), (String, f64))> {
+    /// Per summary column, the run with the largest maximum and the one with the smallest
+    /// minimum (the governing cases); columns that are zero in every run are left out.
+    pub fn governing(&self) -> Vec<Governing> {
         let all_zero = |c: &String| {
             self.runs.iter().all(|r| {
                 r.stats
@@ -515,7 +531,11 @@ impl Collection {
                 };
                 let hi = of(1).max_by(|a, b| a.1.total_cmp(&b.1))?;
                 let lo = of(0).min_by(|a, b| a.1.total_cmp(&b.1))?;
-                Some((c.clone(), hi, lo))
+                Some(Governing {
+                    column: c.clone(),
+                    largest: hi,
+                    smallest: lo,
+                })
             })
             .collect()
     }

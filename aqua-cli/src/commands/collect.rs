@@ -38,10 +38,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         "{:<44} {:>15} {:<12} {:>15} {:<12}",
         "governing cases", "largest max", "in", "smallest min", "in"
     );
-    for (col, hi, lo) in c.governing() {
+    for g in c.governing() {
         println!(
             "{:<44} {:>15.6e} {:<12} {:>15.6e} {:<12}",
-            col, hi.1, hi.0, lo.1, lo.0
+            g.column, g.largest.1, g.largest.0, g.smallest.1, g.smallest.0
         );
     }
     let done = c.runs.iter().filter(|r| r.status == "completed").count();

@@ -28,12 +28,8 @@ pub fn run_text(dir: &Path, name: &str, text: &str) -> PathBuf {
 
 /// Runs a scene file into `out`.
 pub fn run_file(scene: &Path, out: &Path) -> PathBuf {
-    aqua_cli::commands::run::run(aqua_cli::commands::run::Args {
-        scene: scene.to_path_buf(),
-        out: out.to_path_buf(),
-        quiet: true,
-    })
-    .unwrap_or_else(|e| panic!("run of {} failed: {e:#}", scene.display()));
+    aqua_cli::commands::run::run_scene(scene, &[], out, true)
+        .unwrap_or_else(|e| panic!("run of {} failed: {e:#}", scene.display()));
     out.to_path_buf()
 }
 
