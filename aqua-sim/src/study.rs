@@ -19,7 +19,8 @@
 //!
 //! and with several ladders the corrections add (errors of independent discretisations
 //! superpose to leading order): f* = f_ref + Σ Δ_ladder. A ladder that is not numeric, not
-//! geometric, shorter than three, or whose differences change sign or grow (p ≤ 0) gives no
+//! geometric, shorter than three, whose differences change sign or grow (p ≤ 0), or whose observed
+//! order is below 0.9 ([`MIN_ORDER`]: 1/(rᵖ − 1) would amplify the last difference) gives no
 //! correction: its finest run stands for the converged value, and the table says so.
 //!
 //! **Errors and the recommendation.** Each run's error in a metric is |f − f*|/|f*|; the
@@ -616,6 +617,14 @@ fn evaluate(study: &mut Study, metrics: &[Metric], settings: &[Vec<usize>]) {
             })
             .collect();
     }
+    // Without an estimate of every metric that counts, nothing can be recommended.
+    if study
+        .estimates
+        .iter()
+        .any(|e| e.value.is_none() && !e.negligible)
+    {
+        return;
+    }
     study.recommended = study
         .runs
         .iter()
@@ -642,11 +651,14 @@ fn mark_negligible(estimates: &mut [Estimate], metrics: &[Metric]) {
             .fold(0.0, f64::max);
         for (e, m) in estimates.iter_mut().zip(metrics) {
             if is_ratio(m) == ratio {
-                e.negligible = e.value.is_none_or(|v| !(v.abs() > 1e-9 * scale));
+                e.negligible = e.value.is_some_and(|v| !(v.abs() > 1e-9 * scale));
             }
         }
     }
 }
+
+/// The lowest observed order that is extrapolated.
+pub const MIN_ORDER: f64 = 0.9;
 
 /// Observed order and Richardson correction of the finest value of a ladder (values coarse to
 /// fine; `f` the metric at each), or why there is none.
@@ -703,6 +715,14 @@ pub fn richardson(values: &[Value], f: &[Option<f64>]) -> std::result::Result<(f
         ));
     }
     let p = q.ln() / r.ln();
+    // Below first order the correction 1/(rᵖ − 1) of the last difference grows without bound
+    // and the ladder is pre-asymptotic in practice: report, do not extrapolate.
+    if p < MIN_ORDER {
+        return Err(format!(
+            "observed order {p:.2} < {MIN_ORDER}: too low to extrapolate safely, the finest run \
+             stands"
+        ));
+    }
     Ok((p, (f3 - f2) / (r.powf(p) - 1.0)))
 }
 
@@ -843,6 +863,13 @@ mod tests {
             .is_err()
         );
         assert!(richardson(&floats(&[0.4, 0.2, 0.1]), &[Some(1.0), None, Some(0.6)]).is_err());
+        // Order 0.5: refused rather than amplified.
+        let f: Vec<Option<f64>> = [0.4f64, 0.2, 0.1].iter().map(|h| Some(h.sqrt())).collect();
+        assert!(
+            richardson(&floats(&[0.4, 0.2, 0.1]), &f)
+                .unwrap_err()
+                .contains("too low")
+        );
         let words = vec![
             Value::String("hht".into()),
             Value::String("rk4".into()),

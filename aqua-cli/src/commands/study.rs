@@ -175,6 +175,20 @@ fn print_study(s: &Study) {
         );
     }
     println!();
+    if s.estimates.iter().any(|e| e.value.is_none()) {
+        println!(
+            "no estimate for some metrics (the reference run, the last value of every ladder, \
+             did not complete): nothing can be recommended"
+        );
+        return;
+    }
+    if s.estimates.iter().all(|e| e.method != "richardson") {
+        println!(
+            "note: no ladder could be extrapolated, so errors are measured against the finest \
+             run, whose own error is unknown; give three geometric values (e.g. 10,5,2.5) to \
+             estimate it"
+        );
+    }
     match s
         .recommended
         .and_then(|i| s.runs.iter().find(|r| r.index == i))
