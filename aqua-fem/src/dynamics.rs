@@ -225,6 +225,88 @@ pub struct DynamicSolver<'m> {
     lu_uses: usize,
     /// Numeric factorisations of the current attempt.
     attempt_factorisations: usize,
+    /// Outputs of a converged attempt, for its guard.
+    trial: Outputs,
+    /// Halvings and regrowths so far.
+    control: StepControl,
+}
+
+/// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
+/// HHT-α (α ≥ 0) only dissipates in linear problems; growth beyond round-off and the
+/// trapezoidal work of state-dependent loads means the step left the physics.
+pub const ENERGY_GROWTH_TOL: f64 = 0.01;
+
+/// The energy terms of one step (see `DynamicSolver::balance`).
+#[derive(Debug, Clone, Copy, Default)]
+struct Balance {
+    kinetic: f64,
+    strain: f64,
+    power: f64,
+    external_work: f64,
+    support_work: f64,
+    /// Σ|work| over the DOFs: the scale of the trapezoidal work's own error.
+    work_magnitude: f64,
+}
+
+/// What the step control did: every halving with its time and reason, and the regrowths.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct StepControl {
+    /// Steps halved (failed attempts that were retried with half the step).
+    pub halvings: usize,
+    /// Times the step was doubled back towards the nominal dt.
+    pub regrowths: usize,
+    /// Smallest step tried [s] (0 before any halving).
+    pub smallest_dt: f64,
+    /// Halvings per reason, in order of first occurrence.
+    pub reasons: Vec<(String, usize)>,
+    /// The first [`StepControl::MAX_EVENTS`] halvings.
+    pub events: Vec<StepEvent>,
+}
+
+/// One halving.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepEvent {
+    /// Time the step started from [s].
+    pub t: f64,
+    /// Step that failed [s].
+    pub dt: f64,
+    /// Step tried next [s].
+    pub next_dt: f64,
+    /// Why it failed.
+    pub reason: String,
+}
+
+impl StepControl {
+    /// Halvings kept in `events`.
+    pub const MAX_EVENTS: usize = 100;
+
+    fn record(&mut self, t: f64, dt: f64, next_dt: f64, reason: &str) {
+        self.halvings += 1;
+        self.smallest_dt = if self.smallest_dt > 0.0 {
+            self.smallest_dt.min(next_dt)
+        } else {
+            next_dt
+        };
+        // Group by the kind of reason (the text before any number).
+        let kind: String = reason
+            .split(|c: char| c.is_ascii_digit() || c == '(')
+            .next()
+            .unwrap_or(reason)
+            .trim()
+            .to_string();
+        match self.reasons.iter_mut().find(|(k, _)| *k == kind) {
+            Some((_, n)) => *n += 1,
+            None => self.reasons.push((kind, 1)),
+        }
+        if self.events.len() < Self::MAX_EVENTS {
+            self.events.push(StepEvent {
+                t,
+                dt,
+                next_dt,
+                reason: reason.to_string(),
+            });
+        }
+    }
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -303,6 +385,8 @@ impl<'m> DynamicSolver<'m> {
             lu_h: 0.0,
             lu_uses: 0,
             attempt_factorisations: 0,
+            trial: Outputs::new(model),
+            control: StepControl::default(),
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -373,6 +457,10 @@ impl<'m> DynamicSolver<'m> {
     pub fn total_iterations(&self) -> usize {
         self.total_iterations
     }
+    /// What the step control did so far.
+    pub fn step_control(&self) -> &StepControl {
+        &self.control
+    }
     /// Energy balance of the current state.
     pub fn energies(&self) -> Energies {
         self.energies
@@ -395,70 +483,134 @@ impl<'m> DynamicSolver<'m> {
         &self.st
     }
 
-    /// Updates outputs and energies from the last evaluation (at the new state).
-    fn accept_bookkeeping(&mut self, h: f64, first: bool) {
+    /// The energy terms of a step from `x_old` to the last evaluation (`self.sys`, with
+    /// `out` its outputs) at (`x_new`, `v_new`); `mv` is scratch (docs/theory/fem.md#hht-alpha).
+    fn balance(
+        &self,
+        x_old: &[[f64; 3]],
+        x_new: &[[f64; 3]],
+        v_new: &[[f64; 3]],
+        out: &Outputs,
+        mv: &mut [[f64; 3]],
+    ) -> Balance {
         let model = self.model;
-        self.outputs.update(model, &self.sys, true);
         let n = model.n_nodes();
         // Kinetic energy with structural + added mass.
-        let mut mv = std::mem::take(&mut self.mv);
         crate::system::mul_mass(
             model,
             self.st.mass_matrix == MassMatrix::Consistent,
-            &self.state.v,
-            &mut mv,
+            v_new,
+            mv,
         );
-        let mut ek = 0.0;
+        let mut b = Balance {
+            strain: out.strain_energy(model),
+            ..Balance::default()
+        };
         for i in 0..n {
             for k in 0..3 {
                 let mut m = mv[i][k];
                 for l in 0..3 {
-                    m += self.sys.added[i][k][l] * self.state.v[i][l];
+                    m += self.sys.added[i][k][l] * v_new[i][l];
                 }
-                ek += 0.5 * self.state.v[i][k] * m;
+                b.kinetic += 0.5 * v_new[i][k] * m;
             }
         }
-        let u = self.outputs.strain_energy(model);
         // Dissipated power: axial/Rayleigh-K damping and Rayleigh-M.
-        let mut power = 0.0;
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
             let ca = e.ca + self.st.rayleigh[1] * e.ea;
-            power += c.switch * ca * c.strain_rate * c.strain_rate * e.l0;
+            b.power += c.switch * ca * c.strain_rate * c.strain_rate * e.l0;
         }
         if self.st.rayleigh[0] > 0.0 {
             let mut ms = 0.0;
             for i in 0..n {
                 for k in 0..3 {
-                    ms += self.state.v[i][k] * mv[i][k];
+                    ms += v_new[i][k] * mv[i][k];
                 }
             }
-            power += self.st.rayleigh[0] * ms;
+            b.power += self.st.rayleigh[0] * ms;
         }
+        for i in 0..n {
+            for k in 0..3 {
+                let dx = x_new[i][k] - x_old[i][k];
+                let we = 0.5 * (self.fext_prev[i][k] + self.sys.fext[i][k]) * dx;
+                let ws = 0.5 * (self.last_reaction[i][k] + out.reaction[i][k]) * dx;
+                b.external_work += we;
+                b.support_work += ws;
+                b.work_magnitude += we.abs() + ws.abs();
+            }
+        }
+        b
+    }
+
+    /// Updates outputs and energies from the last evaluation (at the new state).
+    fn accept_bookkeeping(&mut self, h: f64, first: bool) {
+        let model = self.model;
+        self.outputs.update(model, &self.sys, true);
+        let mut mv = std::mem::take(&mut self.mv);
+        // x1 holds x_n here (swapped in `step`).
+        let b = self.balance(
+            &self.x1,
+            &self.state.x,
+            &self.state.v,
+            &self.outputs,
+            &mut mv,
+        );
         if !first {
-            let mut wext = 0.0;
-            let mut wsup = 0.0;
-            for i in 0..n {
-                for k in 0..3 {
-                    let dx = self.state.x[i][k] - self.x1[i][k];
-                    wext += 0.5 * (self.fext_prev[i][k] + self.sys.fext[i][k]) * dx;
-                    wsup += 0.5 * (self.last_reaction[i][k] + self.outputs.reaction[i][k]) * dx;
-                }
-            }
-            self.energies.external_work += wext;
-            self.energies.support_work += wsup;
-            self.energies.damping_dissipation += 0.5 * (self.power_prev + power) * h;
+            self.energies.external_work += b.external_work;
+            self.energies.support_work += b.support_work;
+            self.energies.damping_dissipation += 0.5 * (self.power_prev + b.power) * h;
         }
-        self.energies.kinetic = ek;
-        self.energies.strain = u;
+        self.energies.kinetic = b.kinetic;
+        self.energies.strain = b.strain;
         self.energies.numerical_dissipation = self.energies.external_work
             + self.energies.support_work
-            - (ek + u - self.e0)
+            - (b.kinetic + b.strain - self.e0)
             - self.energies.damping_dissipation;
         self.mv = mv;
-        self.power_prev = power;
+        self.power_prev = b.power;
         self.q_prev.copy_from_slice(&self.sys.q);
         self.fext_prev.copy_from_slice(&self.sys.fext);
         self.last_reaction.copy_from_slice(&self.outputs.reaction);
+    }
+
+    /// Why a converged attempt (x1, v1 with `self.sys` evaluated there) must still be
+    /// rejected (docs/theory/fem.md#step-control): an element that resists compression or was
+    /// taut turned over in one step (the true motion would pass through zero length), or the
+    /// step created energy: ΔE_k + ΔU + D − W_ext − W_sup > ENERGY_GROWTH_TOL·E_scale, with
+    /// E_scale = max(E_n, E_n+1) + Σ_dofs |W| (the trapezoidal work of loads that balance each
+    /// other, e.g. weight and tension, is exact only to O(Δt³) per DOF).
+    fn guard(&mut self, h: f64) -> Option<String> {
+        let model = self.model;
+        for (e, (el, c)) in model.elements().iter().zip(&self.sys.cable).enumerate() {
+            let (a, b) = (el.a, el.b);
+            let d0 = crate::system::sub(self.state.x[b], self.state.x[a]);
+            let d1 = crate::system::sub(self.x1[b], self.x1[a]);
+            let dot = d0[0] * d1[0] + d0[1] * d1[1] + d0[2] * d1[2];
+            let resisted = el.rc > 0.0 || c.strain > 0.0 || self.outputs.strain[e] > 0.0;
+            if dot < 0.0 && resisted {
+                return Some(format!(
+                    "element {e} turned over in one step (its direction reversed while it carried load)"
+                ));
+            }
+        }
+        let mut trial = std::mem::take(&mut self.trial);
+        trial.update(model, &self.sys, true);
+        let mut mv = std::mem::take(&mut self.mv);
+        let b = self.balance(&self.state.x, &self.x1, &self.v1, &trial, &mut mv);
+        self.mv = mv;
+        self.trial = trial;
+        let e_old = self.energies.kinetic + self.energies.strain;
+        let e_new = b.kinetic + b.strain;
+        let created = e_new - e_old + 0.5 * (self.power_prev + b.power) * h
+            - b.external_work
+            - b.support_work;
+        let scale = e_old.max(e_new) + b.work_magnitude + self.f_floor * model.mean_length;
+        (created > ENERGY_GROWTH_TOL * scale).then(|| {
+            format!(
+                "the step created energy ({created:.3e} J, {:.1} % of {scale:.3e} J)",
+                100.0 * created / scale
+            )
+        })
     }
 
     /// Takes one accepted step (halving Δt on failure down to `dt_min`), landing on output
@@ -486,7 +638,16 @@ impl<'m> DynamicSolver<'m> {
                 h = target - t;
                 landed = true;
             }
-            match self.attempt(provider, h) {
+            let outcome = self
+                .attempt(provider, h)
+                .and_then(|ok| match self.guard(h) {
+                    Some(reason) => Err(Attempt {
+                        reason,
+                        history: ok.1.clone(),
+                    }),
+                    None => Ok(ok),
+                });
+            match outcome {
                 Ok((iters, hist)) => {
                     self.clamp = false;
                     self.total_iterations += iters;
@@ -503,6 +664,7 @@ impl<'m> DynamicSolver<'m> {
                         if self.good_steps >= 4 && self.dt_cur < self.st.dt {
                             self.dt_cur = (2.0 * self.dt_cur).min(self.st.dt);
                             self.good_steps = 0;
+                            self.control.regrowths += 1;
                         }
                     } else {
                         self.good_steps = 0;
@@ -537,6 +699,7 @@ impl<'m> DynamicSolver<'m> {
                     }
                     self.clamp = false;
                     self.dt_cur = 0.5 * h.min(self.dt_cur);
+                    self.control.record(t, h, self.dt_cur, &fail.reason);
                     if self.dt_cur < dt_min {
                         return Err(self.step_failure(provider, h, dt_min, fail));
                     }

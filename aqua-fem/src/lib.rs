@@ -78,7 +78,10 @@ pub mod state;
 pub mod statics;
 mod system;
 
-pub use dynamics::{DynamicSettings, DynamicSolver, Energies, MassMatrix, StepReport};
+pub use dynamics::{
+    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, MassMatrix, StepControl,
+    StepEvent, StepReport,
+};
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
 pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};

@@ -13,7 +13,7 @@ use crate::provider::WaterLoads;
 use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium};
 use aqua_env::Phase;
-use aqua_fem::{Outputs, State, StaticControl, StaticProgress, StepReport};
+use aqua_fem::{Outputs, State, StaticControl, StaticProgress, StepControl, StepReport};
 use aqua_hydro::assembly::LoadAssembly;
 use std::time::Instant;
 
@@ -61,6 +61,8 @@ pub struct RunRecord {
     pub frames: usize,
     /// The last summary row.
     pub last: Option<SummaryRow>,
+    /// Step halvings and regrowths of the dynamic phase (HHT-α).
+    pub step_control: Option<StepControl>,
 }
 
 /// One output step.
@@ -225,11 +227,13 @@ impl<'p> Simulation<'p> {
         while !solver.is_finished() {
             if obs.stop_requested() {
                 record.ending = Ending::Interrupted;
+                record.step_control = solver.step_control();
                 return Ok(());
             }
-            let report = solver
-                .step(&mut self.loads)
-                .map_err(|e| SimError::Dynamic(Box::new(e)))?;
+            let report = solver.step(&mut self.loads).map_err(|e| {
+                record.step_control = solver.step_control();
+                SimError::Dynamic(Box::new(e))
+            })?;
             record.steps += 1;
             record.iterations += report.iterations;
             obs.step_done(&report, record.steps);
@@ -244,6 +248,7 @@ impl<'p> Simulation<'p> {
                 )?;
             }
         }
+        record.step_control = solver.step_control();
         Ok(())
     }
 

@@ -7,7 +7,7 @@ use crate::plan::Integrator;
 use crate::provider::WaterLoads;
 use aqua_fem::{
     DynamicSolver, ExplicitSolver, Model, Outputs, State, StaticControl, StaticProgress,
-    StaticSettings, StaticSolution, StepReport, solve_static_observed,
+    StaticSettings, StaticSolution, StepControl, StepReport, solve_static_observed,
 };
 
 /// Static equilibrium of the model under the water loads (docs/theory/fem.md#static-solver).
@@ -35,6 +35,10 @@ pub trait Stepper {
     fn outputs(&self) -> &Outputs;
     /// Warnings of starting the integrator (a reduced explicit step, …).
     fn warnings(&self) -> Vec<String>;
+    /// What the step control did (HHT-α; explicit schemes keep a fixed step).
+    fn step_control(&self) -> Option<StepControl> {
+        None
+    }
 }
 
 impl Stepper for DynamicSolver<'_> {
@@ -52,6 +56,9 @@ impl Stepper for DynamicSolver<'_> {
     }
     fn warnings(&self) -> Vec<String> {
         Vec::new()
+    }
+    fn step_control(&self) -> Option<StepControl> {
+        Some(DynamicSolver::step_control(self).clone())
     }
 }
 

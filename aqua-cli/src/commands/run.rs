@@ -147,6 +147,7 @@ pub fn run_scene(
     term.bar.finish_and_clear();
     record.wall = t0.elapsed().as_secs_f64();
     let files = term.files;
+    print_step_control(&record);
     files.write_json(&run_json(&prep, &record, &result, &files))?;
     match record.ending {
         Ending::Completed => {
@@ -210,8 +211,30 @@ fn run_json(
         "newton_iterations": record.iterations,
         "static_newton_iterations": record.static_iterations,
         "static_residual_history": &record.static_residuals,
+        "step_control": &record.step_control,
         "time_per_step_s": if record.steps > 0 { record.dyn_wall / record.steps as f64 } else { 0.0 },
     })
+}
+
+/// Says how often the step control halved the step, and why (docs/theory/fem.md#step-control).
+fn print_step_control(r: &RunRecord) {
+    let Some(c) = &r.step_control else { return };
+    if c.halvings == 0 {
+        return;
+    }
+    let reasons: Vec<String> = c
+        .reasons
+        .iter()
+        .map(|(why, n)| format!("{n}× {why}"))
+        .collect();
+    eprintln!(
+        "note: the time step was halved {} times (smallest {:.3e} s; {}) and grown back {} times; \
+         run.json lists them under step_control",
+        c.halvings,
+        c.smallest_dt,
+        reasons.join(", "),
+        c.regrowths
+    );
 }
 
 fn print_final(files: &RunFiles, r: &RunRecord) {

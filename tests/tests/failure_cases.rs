@@ -1,0 +1,125 @@
+//! The dynamics failure cases (docs/theory/fem.md#step-control) as regression tests with
+//! their physical bounds: a run either stays within the bound or stops with a clear error —
+//! never completes silently wrong.
+
+mod common;
+
+use common::{scratch, summary};
+use std::path::{Path, PathBuf};
+
+const G: f64 = 9.81;
+
+/// Runs a scene text; returns the output folder and the run's error text, if any.
+fn run(dir: &Path, name: &str, text: &str) -> (PathBuf, Option<String>) {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join(format!("{name}-out"));
+    let r = aqua_cli::commands::run::run_scene(&scene, &[], &out, true);
+    (out, r.err().map(|e| format!("{e:#}")))
+}
+
+fn run_json(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap()
+}
+
+fn max_of(out: &Path, prefix: &str) -> f64 {
+    summary(out)
+        .iter()
+        .flat_map(|row| {
+            row.iter()
+                .filter(|(k, _)| k.starts_with(prefix))
+                .map(|(_, v)| *v)
+                .collect::<Vec<_>>()
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// One 1 m bar (it resists compression) with 1 kg at its lower end, ω = 2π, released
+/// unstretched from rest, trapezoidal rule (α = 0) at Δt = T/2. The mass oscillates 0.25 m about
+/// its equilibrium and never reaches the anchor; the predictor used to carry it through the
+/// anchor onto the mirror branch (an inverted bar at its rest length), and the run completed
+/// there. Bound: the largest tension of the true motion is 2·m·g.
+#[test]
+fn a_bar_never_turns_over_through_its_anchor() {
+    let d = scratch("mirror");
+    let ea = 4.0 * std::f64::consts::PI.powi(2); // k = EA/L0 with m = 1 kg: ω = 2π
+    let text = format!(
+        "[sea]\ndepth = 60.0\ngravity = {G}\n[[line]]\nname = \"bar\"\nanchor = [0.0, 0.0, 20.0]\n\
+         fairlead = [0.0, 0.0, 19.0]\nlength = 1.0\nsegments = 1\ndiameter = 0.01\nea = {ea}\n\
+         mass_per_length = 0.2\ncompression_ratio = 1.0\n[[point]]\nnodes = \"bar/fairlead\"\n\
+         mass = 0.9\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nalpha = 0.0\ndt = 0.5\n\
+         t_end = 4.0\noutput_interval = 0.5\n"
+    );
+    let (out, err) = run(&d, "mirror", &text);
+    assert!(err.is_none(), "{err:?}");
+    let m = 1.0;
+    let tmax = max_of(&out, "Tmax_");
+    assert!(
+        tmax <= 2.0 * m * G * 1.001,
+        "largest tension {tmax} N > 2mg"
+    );
+    let rj = run_json(&out);
+    let control = &rj["step_control"];
+    assert!(control["halvings"].as_u64().unwrap() >= 1, "{control}");
+    assert!(
+        control["events"][0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("turned over"),
+        "{control}"
+    );
+}
+
+/// A 10 m chain of 80 tension-only elements (EA 1e7 N, 1 kg/m) pinned at the top and released
+/// from rest 1° off vertical, HHT α = 0.05 at Δt = 0.005 s. Its weight is 98 N; a chain
+/// swinging from rest cannot load an element with more than a few kN. It used to reach 7.7 MN;
+/// now every step that creates energy is rejected and halved, so the run stays within the
+/// bound until it ends or stops with a message.
+#[test]
+fn a_released_slack_chain_stays_within_its_energy_bound() {
+    let d = scratch("chain-drop");
+    let top = [0.0, 0.0, 30.0];
+    let angle = 1.0f64.to_radians();
+    let text = format!(
+        "[sea]\ndepth = 60.0\ngravity = {G}\n[[line]]\nname = \"chain\"\nanchor = {top:?}\n\
+         fairlead = [{}, 0.0, {}]\nlength = 10.0\nsegments = 80\ndiameter = 0.01\nea = 1e7\n\
+         mass_per_length = 1.0\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nalpha = 0.05\n\
+         dt = 0.005\nt_end = 1.0\noutput_interval = 0.05\n",
+        10.0 * angle.sin(),
+        30.0 - 10.0 * angle.cos()
+    );
+    let (out, err) = run(&d, "drop", &text);
+    let tmax = max_of(&out, "Tmax_");
+    assert!(tmax < 2000.0, "largest tension {tmax} N (weight 98 N)");
+    match err {
+        None => assert_eq!(run_json(&out)["status"], "completed"),
+        Some(e) => assert!(e.contains("dynamic step failed at t ="), "{e}"),
+    }
+}
+
+/// A 1 m × 1 m net panel hanging from its top edge with a 5 N bottom weight, in still water,
+/// started from its own static equilibrium (HHT, Δt = 0.05 s, 20 s). Nothing loads it: the
+/// twine tension must stay at its static value (it used to grow to 4.5 kN).
+#[test]
+fn a_net_panel_in_still_water_stays_at_rest() {
+    let d = scratch("still-panel");
+    let text = "[sea]\ndepth = 10.0\n[analysis]\nkind = \"static+dynamic\"\n\
+                [analysis.dynamic]\nt_end = 20.0\noutput_interval = 0.5\ndt = 0.05\n\
+                [[panel]]\nname = \"panel\"\nwidth = 1.0\nheight = 1.0\ndivisions = [10, 10]\n\
+                centre = [0.0, 0.0, -1.0]\nnormal = [1.0, 0.0, 0.0]\nfixed = \"top\"\n\
+                net = { twine_diameter = 0.002, half_mesh = 0.019, solidity = 0.2, screen_model = \"S1\" }\n\
+                bottom_weight = 5.0\n";
+    let (out, err) = run(&d, "panel", text);
+    assert!(err.is_none(), "{err:?}");
+    let rows = summary(&out);
+    let t0 = rows[0]
+        .iter()
+        .filter(|(k, _)| k.starts_with("Tmax_"))
+        .map(|(_, v)| *v)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let tmax = max_of(&out, "Tmax_");
+    assert!(
+        tmax <= 1.05 * t0,
+        "static twine tension {t0} N grew to {tmax} N in still water"
+    );
+}
