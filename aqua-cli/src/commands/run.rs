@@ -1,5 +1,7 @@
 //! `aqua run scene.toml --out DIR`: static and/or dynamic solve with a progress bar, writing
-//! `DIR/<scene>.pvd` + `.vtu` per output step, `DIR/summary.csv` and `DIR/run.json`.
+//! `DIR/<scene>.pvd` + a multiblock `.vtm` per output step (blocks in `DIR/<scene>_NNNNNN/`), the
+//! undeformed `DIR/<scene>_reference.vtm`, `DIR/open_in_paraview.py`, `DIR/summary.csv` and
+//! `DIR/run.json`.
 //!
 //! Ctrl-C or a failed step stops cleanly: every step already written stays readable, the
 //! `.pvd` lists exactly those steps, `run.json` records why the run ended, and the exit code is
@@ -164,6 +166,8 @@ fn run_json(
         "final": record.last,
         "output_steps": files.steps_written,
         "pvd": files.pvd_path(),
+        "paraview_script": files.dir().join("open_in_paraview.py"),
+        "names": files.names(),
         "wall_time_s": record.wall,
         "dynamic_wall_time_s": record.dyn_wall,
         "steps": record.steps,
