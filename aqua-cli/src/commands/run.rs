@@ -181,7 +181,7 @@ fn run_json(
 fn print_final(files: &RunFiles, r: &RunRecord) {
     if let Some(last) = &r.last {
         println!(
-            "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {:.4}",
+            "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {}",
             last.t,
             last.net_force[0],
             last.net_force[1],
@@ -189,7 +189,12 @@ fn print_final(files: &RunFiles, r: &RunRecord) {
             last.reaction[0],
             last.reaction[1],
             last.reaction[2],
-            last.volume_ratio
+            // The ratio is 0 only where there is no enclosed volume to compare with.
+            if last.volume_ratio > 0.0 {
+                format!("{:.4}", last.volume_ratio)
+            } else {
+                "n/a (no closed net)".to_string()
+            }
         );
     }
     println!(
