@@ -54,7 +54,11 @@ impl RunFiles {
         let series = MultiblockSeries::new(dir, scene_name, &built.mesh).map_err(out)?;
         series.write_reference(&built.mesh).map_err(out)?;
         let script = dir.join("open_in_paraview.py");
-        std::fs::write(&script, PARAVIEW_SCRIPT).map_err(io("writing", &script))?;
+        let abs = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        let here = serde_json::to_string(&abs.to_string_lossy()).unwrap_or_else(|_| "None".into());
+        let text =
+            PARAVIEW_SCRIPT.replacen("WRITTEN_IN = None", &format!("WRITTEN_IN = {here}"), 1);
+        std::fs::write(&script, text).map_err(io("writing", &script))?;
         let mut point_mass = vec![0.0; built.mesh.nodes.len()];
         for b in built.model.point_bodies() {
             if let Some(m) = point_mass.get_mut(b.node) {

@@ -72,11 +72,19 @@ def parse_args(argv):
     return opts
 
 
+# The output directory as `aqua run` wrote it (used when the script's own location is unknown,
+# e.g. when a GUI runs it without __file__; a moved directory is found through __file__).
+WRITTEN_IN = None
+
+
 def run_dir():
     here = globals().get("__file__")
-    if here:
-        return os.path.dirname(os.path.abspath(here))
-    return os.getcwd()
+    candidates = [os.path.dirname(os.path.abspath(here))] if here else []
+    candidates += [WRITTEN_IN, os.getcwd()]
+    for d in candidates:
+        if d and glob.glob(os.path.join(d, "*.pvd")):
+            return d
+    raise SystemExit(f"open_in_paraview: no .pvd found in {[d for d in candidates if d]}")
 
 
 def find_pvd(d):
@@ -224,9 +232,11 @@ def main(argv):
 
 
 _view = main(sys.argv[1:])
-# pvpython: keep the window open until it is closed (the GUI and pvbatch need nothing more).
+# pvpython: keep the window open until it is closed. The GUI (which runs the script with an
+# empty sys.argv[0]) and pvbatch need nothing more.
 _interactive = not any(a in sys.argv for a in ("--screenshot", "--report"))
-if _interactive and not getattr(__import__("paraview"), "fromGUI", False):
+if _interactive and sys.argv[:1] and sys.argv[0].endswith(".py") \
+        and not getattr(__import__("paraview"), "fromGUI", False):
     try:
         from paraview.simple import Interact
 
