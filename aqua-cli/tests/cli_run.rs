@@ -607,6 +607,34 @@ fn paraview_script_opens_the_series_in_real_paraview() {
             png.len()
         );
     }
+    // As the GUI runs it (no __file__, empty argv[0], another working directory): the script
+    // finds the run through the directory `aqua run` recorded in it.
+    let wrapper = dir.join("as_gui.py");
+    let report2 = dir.join("report_gui.json");
+    std::fs::write(
+        &wrapper,
+        format!(
+            "import sys\nsys.argv = ['', '--report', {:?}]\n\
+             exec(compile(open({:?}).read(), 'open_in_paraview.py', 'exec'), \
+             {{'__name__': '__main__'}})\n",
+            report2.to_str().unwrap(),
+            out.join("open_in_paraview.py").to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let res = Command::new(&pv)
+        .arg(&wrapper)
+        .current_dir(std::env::temp_dir())
+        .output()
+        .unwrap();
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report2).unwrap()).unwrap();
+    assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
 }
 
 #[test]
