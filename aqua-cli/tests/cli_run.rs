@@ -356,11 +356,13 @@ fn outputs_are_read_back_by_an_independent_vtk_reader() {
         "points": 81,
         "cells": {"line": 80},
         "point_arrays": ["displacement", "velocity", "hydro_force", "reaction", "point_mass",
-                         "node_id", "object_id", "fixed", "point_weight"],
+                         "supported", "node_id", "object_id", "fixed", "point_weight"],
         "line_arrays": ["tension", "slack", "axial_force", "strain", "wake_factor",
                         "group_id", "role_id", "element_id", "diameter"],
         "times": times,
         "run_json": out.join("run.json"),
+        // The anchor is fixed by the line builder, the fairlead prescribed.
+        "point_sums": {"supported": 2, "fixed": 1},
     });
     let (ok, msg) = check_series(&python, &out.join("mooring-chain.pvd"), &expect, None);
     assert!(ok, "VTK read-back failed: {msg}");

@@ -9,7 +9,8 @@
 //! `.vtm` is complete, and `summary.csv` is flushed row by row.
 //!
 //! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
-//! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`; lines: `tension`
+//! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
+//! (1 where a DOF is fixed or prescribed); lines: `tension`
 //! (the axial force where it pulls, 0 where the member is slack), `slack` (1 where the axial
 //! force is ≤ 0), `axial_force` (signed, incl. axial damping: negative values are compression of
 //! bars or the damping and compression-ratio parts of a slack cable), `strain`, `wake_factor`;
@@ -34,6 +35,8 @@ pub struct RunFiles {
     series: MultiblockSeries,
     /// Point mass per node [kg] (point bodies incl. weights W/g), the same every step.
     point_mass: Vec<f64>,
+    /// 1 where a node has a fixed or prescribed DOF (builders, `[[fix]]`, `[[prescribed]]`).
+    supported: Vec<i32>,
     csv: std::io::BufWriter<std::fs::File>,
     csv_path: PathBuf,
     /// Output steps written.
@@ -65,6 +68,12 @@ impl RunFiles {
                 *m += b.mass;
             }
         }
+        let mut supported = vec![0; built.mesh.nodes.len()];
+        for &n in &built.supported_nodes {
+            if let Some(s) = supported.get_mut(n) {
+                *s = 1;
+            }
+        }
         let path = dir.join("summary.csv");
         let mut csv =
             std::io::BufWriter::new(std::fs::File::create(&path).map_err(io("creating", &path))?);
@@ -75,6 +84,7 @@ impl RunFiles {
             dir: dir.to_path_buf(),
             series,
             point_mass,
+            supported,
             csv,
             csv_path: path,
             steps_written: 0,
@@ -129,6 +139,7 @@ impl RunFiles {
             BlockArray::vectors("hydro_force", &out.hydro_force),
             BlockArray::vectors("reaction", &out.reaction),
             BlockArray::scalar("point_mass", self.point_mass.clone()),
+            BlockArray::int("supported", self.supported.clone()),
         ];
         for a in &point {
             if let aqua_mesh::vtm::ArrayValues::F64 { values, .. } = &a.values {

@@ -17,6 +17,7 @@ VTK's own readers (vtkXMLMultiBlockDataReader, not the Rust code that wrote them
   `TimeValue` (= the `.pvd` time); every `group_id`/`role_id`/`object_id` has a name;
 * the `points` blocks partition the nodes (`node_id` 0..N-1 once each) and the lines/panels
   blocks hold every element once (`element_id`, `panel_id`);
+* `point_sums` {array: value}: the sum of a point array over the `points` blocks;
 * the sums over blocks equal the single-grid counts: `points`, `cells` {line, triangle, quad}
   from EXPECT.json, and/or those of `--single MESH.vtu` (the same model written as one grid by
   `aqua mesh --scene ... --out`);
@@ -93,6 +94,7 @@ def check_step(path, t, exp, fails, ref=None):
     npts = 0
     cells = {}
     node_ids = []
+    point_sums = {}
     elem_ids = []
     panel_ids = []
     tables = None
@@ -158,6 +160,9 @@ def check_step(path, t, exp, fails, ref=None):
             ids = arr(pd, "node_id")
             if ids is not None:
                 node_ids.extend(ids.tolist())
+            for a in exp.get("point_sums", {}):
+                v = arr(pd, a)
+                point_sums[a] = point_sums.get(a, 0) + (float(v.sum()) if v is not None else 0.0)
             if b.GetNumberOfCells() != b.GetNumberOfPoints():
                 fails.append(f"{path}: block {name}: {b.GetNumberOfCells()} vertices for "
                              f"{b.GetNumberOfPoints()} points")
@@ -185,6 +190,10 @@ def check_step(path, t, exp, fails, ref=None):
         fails.append(f"{path}: lines blocks do not hold every element once")
     if sorted(panel_ids) != list(range(len(panel_ids))):
         fails.append(f"{path}: panels blocks do not hold every panel once")
+    for a, want in exp.get("point_sums", {}).items():
+        if not math.isclose(point_sums.get(a, 0.0), want, rel_tol=1e-9, abs_tol=1e-9):
+            fails.append(f"{path}: sum of point array {a} over the points blocks is "
+                         f"{point_sums.get(a)}, expected {want}")
     if "points" in exp and npts != exp["points"]:
         fails.append(f"{path}: {npts} points in the points blocks, expected {exp['points']}")
     if "cells" in exp:
