@@ -1,7 +1,9 @@
 //! `aqua check` and `aqua run` end to end through the binary: every bundled example checks,
 //! a mistake in each scene section gives exit code 2 with the file, line and key, a failed or
-//! interrupted run leaves a consistent `.pvd`, and the outputs are read back by an independent
-//! VTK reader (Python meshio, when `AQUA_VTK_PYTHON` names an interpreter that has it).
+//! interrupted run leaves a consistent `.pvd`, the multiblock outputs are read back by an
+//! independent VTK reader (the `vtk` Python package, when `AQUA_VTK_PYTHON` names an
+//! interpreter that has it) and the ParaView script runs in real ParaView (when `pvbatch` is
+//! installed).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -30,7 +32,7 @@ fn aqua(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-/// The `.vtu` files a `.pvd` lists, with their times.
+/// The `.vtm` files a `.pvd` lists, with their times.
 fn pvd_entries(pvd: &Path) -> Vec<(f64, String)> {
     let text = std::fs::read_to_string(pvd).unwrap();
     text.lines()
@@ -46,7 +48,8 @@ fn pvd_entries(pvd: &Path) -> Vec<(f64, String)> {
         .collect()
 }
 
-/// Asserts the `.pvd` lists exactly the `.vtu` files in its directory, at increasing times.
+/// Asserts the `.pvd` lists exactly the step `.vtm` files in its directory (not the undeformed
+/// `_reference.vtm`), at increasing times, and that every block file each one names exists.
 fn assert_consistent(pvd: &Path) -> Vec<(f64, String)> {
     let entries = pvd_entries(pvd);
     let dir = pvd.parent().unwrap();
@@ -54,7 +57,7 @@ fn assert_consistent(pvd: &Path) -> Vec<(f64, String)> {
         .unwrap()
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".vtu"))
+        .filter(|n| n.ends_with(".vtm") && !n.ends_with("_reference.vtm"))
         .collect();
     on_disk.sort();
     let mut listed: Vec<String> = entries
@@ -69,6 +72,18 @@ fn assert_consistent(pvd: &Path) -> Vec<(f64, String)> {
         .collect();
     listed.sort();
     assert_eq!(listed, on_disk, "pvd and directory disagree");
+    for f in &listed {
+        let vtm = std::fs::read_to_string(dir.join(f)).unwrap();
+        let blocks: Vec<&str> = vtm
+            .split("file=\"")
+            .skip(1)
+            .map(|r| &r[..r.find('"').unwrap()])
+            .collect();
+        assert!(!blocks.is_empty(), "{f} names no block");
+        for b in blocks {
+            assert!(dir.join(b).is_file(), "{f} names {b}, which is not on disk");
+        }
+    }
     assert!(
         entries.windows(2).all(|w| w[1].0 > w[0].0),
         "times must increase"
@@ -334,27 +349,294 @@ fn outputs_are_read_back_by_an_independent_vtk_reader() {
     for (k, (t, _)) in entries.iter().enumerate() {
         assert!((t - 0.1 * k as f64).abs() < 1e-9, "time {t}");
     }
-    let Ok(python) = std::env::var("AQUA_VTK_PYTHON") else {
-        eprintln!("note: AQUA_VTK_PYTHON is not set; the meshio read-back runs in CI (.ci/run)");
-        return;
+    let Some(python) = vtk_python() else { return };
+    let times: Vec<f64> = entries.iter().map(|(t, _)| *t).collect();
+    let expect = serde_json::json!({
+        "blocks": ["chain/lines", "chain/points"],
+        "points": 81,
+        "cells": {"line": 80},
+        "point_arrays": ["displacement", "velocity", "hydro_force", "reaction", "point_mass",
+                         "supported", "node_id", "object_id", "fixed", "point_weight"],
+        "line_arrays": ["tension", "slack", "axial_force", "strain", "wake_factor",
+                        "group_id", "role_id", "element_id", "diameter"],
+        "times": times,
+        "run_json": out.join("run.json"),
+        // The anchor is fixed by the line builder, the fairlead prescribed.
+        "point_sums": {"supported": 2, "fixed": 1},
+    });
+    let (ok, msg) = check_series(&python, &out.join("mooring-chain.pvd"), &expect, None);
+    assert!(ok, "VTK read-back failed: {msg}");
+}
+
+/// The Python interpreter with the `vtk` package (tests/python/requirements.txt), or a printed
+/// note and `None`.
+fn vtk_python() -> Option<String> {
+    match std::env::var("AQUA_VTK_PYTHON") {
+        Ok(p) => Some(p),
+        Err(_) => {
+            eprintln!(
+                "note: AQUA_VTK_PYTHON is not set; the independent VTK read-back runs in CI \
+                 (.ci/run installs tests/python/requirements.txt)"
+            );
+            None
+        }
+    }
+}
+
+/// Runs tests/python/check_series.py on a `.pvd` with expectations; (passed, output).
+fn check_series(
+    python: &str,
+    pvd: &Path,
+    expect: &serde_json::Value,
+    single: Option<&Path>,
+) -> (bool, String) {
+    let ef = pvd.with_extension("expect.json");
+    std::fs::write(&ef, expect.to_string()).unwrap();
+    let mut cmd = Command::new(python);
+    cmd.arg(root().join("tests/python/check_series.py"))
+        .arg(pvd)
+        .arg("--expect")
+        .arg(&ef);
+    if let Some(s) = single {
+        cmd.arg("--single").arg(s);
+    }
+    let out = cmd.output().expect("cannot run AQUA_VTK_PYTHON");
+    (
+        out.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    )
+}
+
+/// A small moored cage (CSM cage + four named chains) in current only, 1 s of dynamics.
+fn moored_cage_scene(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/moored-cage.toml")).unwrap();
+    let a = text.find("[sea.waves]").unwrap();
+    let b = text.find("[[cage]]").unwrap();
+    let text = format!("{}{}", &text[..a], &text[b..])
+        .replace("element_length = 4.0", "element_length = 5.0")
+        .replace("top_ring[6]", "top_ring[4]")
+        .replace("top_ring[12]", "top_ring[8]")
+        .replace("top_ring[18]", "top_ring[12]")
+        .replace("t_end = 60.0", "t_end = 1.0")
+        .replace("output_interval = 1.0", "output_interval = 0.5");
+    assert!(text.contains("t_end = 1.0") && text.contains("top_ring[12]"));
+    let p = dir.join("moored.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn run_quiet(scene: &Path, out: &Path) {
+    let (code, _, err) = aqua(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+}
+
+const MOORED_BLOCKS: [&str; 11] = [
+    "cage/lines",
+    "cage/panels",
+    "cage/points",
+    "m_east/lines",
+    "m_east/points",
+    "m_north/lines",
+    "m_north/points",
+    "m_west/lines",
+    "m_west/points",
+    "m_south/lines",
+    "m_south/points",
+];
+
+#[test]
+fn multiblock_series_is_named_per_object_and_sums_to_the_single_grid() {
+    let dir = scratch("multiblock");
+    let scene = moored_cage_scene(&dir);
+    let out = dir.join("out");
+    run_quiet(&scene, &out);
+    let pvd = out.join("moored-cage.pvd");
+    let entries = assert_consistent(&pvd);
+    assert_eq!(entries.len(), 3, "t = 0, 0.5, 1");
+    assert!(out.join("moored-cage_reference.vtm").is_file());
+    assert!(out.join("open_in_paraview.py").is_file());
+    // run.json maps ids to names.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    let names = &json["names"];
+    assert_eq!(
+        names["object_names"],
+        serde_json::json!(["cage", "m_east", "m_north", "m_west", "m_south"])
+    );
+    assert_eq!(names["block_names"], serde_json::json!(MOORED_BLOCKS));
+    let groups: Vec<&str> = names["group_names"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert!(groups.contains(&"cage/net_twines") && groups.contains(&"m_east/moorings"));
+    assert_eq!(names["role_names"][0], "net_twines");
+    // The same model as one grid, written by `aqua mesh`, gives the counts the blocks must
+    // add up to.
+    let single = dir.join("single.vtu");
+    let (code, _, err) = aqua(&[
+        "mesh",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        single.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let Some(python) = vtk_python() else { return };
+    let expect = serde_json::json!({
+        "blocks": MOORED_BLOCKS,
+        "point_arrays": ["displacement", "velocity", "hydro_force", "reaction", "point_mass",
+                         "node_id", "object_id", "copy_id", "fixed", "point_weight"],
+        "line_arrays": ["tension", "slack", "axial_force", "strain", "wake_factor",
+                        "group_id", "role_id", "object_id", "element_id", "diameter",
+                        "elastic_diameter", "hydro_diameter"],
+        "panel_arrays": ["wake_factor", "group_id", "role_id", "object_id", "panel_id",
+                         "solidity", "twine_diameter"],
+        "times": [0.0, 0.5, 1.0],
+        "run_json": out.join("run.json"),
+    });
+    let (ok, msg) = check_series(&python, &pvd, &expect, Some(&single));
+    assert!(ok, "VTK read-back failed: {msg}");
+    assert!(msg.contains("273 points"), "{msg}");
+    // The checker really checks: a wrong block list and a wrong count fail.
+    let mut wrong = expect.clone();
+    wrong["blocks"] = serde_json::json!(["cage/net"]);
+    let (ok, msg) = check_series(&python, &pvd, &wrong, Some(&single));
+    assert!(!ok && msg.contains("blocks"), "{msg}");
+    let mut wrong = expect.clone();
+    wrong["points"] = serde_json::json!(272);
+    let (ok, msg) = check_series(&python, &pvd, &wrong, Some(&single));
+    assert!(!ok && msg.contains("single grid"), "{msg}");
+}
+
+/// `pvbatch` (or `AQUA_PVBATCH`), or a printed note and `None`.
+fn pvbatch() -> Option<PathBuf> {
+    if let Ok(p) = std::env::var("AQUA_PVBATCH") {
+        return Some(PathBuf::from(p));
+    }
+    for name in ["pvbatch", "pvpython"] {
+        if let Some(p) = std::env::var_os("PATH").and_then(|paths| {
+            std::env::split_paths(&paths)
+                .map(|d| d.join(name))
+                .find(|p| p.is_file())
+        }) {
+            return Some(p);
+        }
+    }
+    eprintln!(
+        "note: skipped: ParaView is not installed (no pvbatch or pvpython on PATH, AQUA_PVBATCH \
+         unset); the script open_in_paraview.py was not run"
+    );
+    None
+}
+
+fn on_path(name: &str) -> bool {
+    std::env::var_os("PATH")
+        .is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(name).is_file()))
+}
+
+#[test]
+fn paraview_script_opens_the_series_in_real_paraview() {
+    let Some(pv) = pvbatch() else { return };
+    let dir = scratch("paraview");
+    let scene = moored_cage_scene(&dir);
+    let out = dir.join("out");
+    run_quiet(&scene, &out);
+    let report = dir.join("report.json");
+    let shot = dir.join("view.png");
+    // A picture needs a display: a real one, or a virtual one through xvfb-run.
+    let display = std::env::var_os("DISPLAY").is_some();
+    let xvfb = !display && on_path("xvfb-run");
+    let mut cmd = if xvfb {
+        let mut c = Command::new("xvfb-run");
+        c.arg("-a").arg(&pv);
+        c
+    } else {
+        Command::new(&pv)
     };
-    let times: Vec<String> = entries.iter().map(|(t, _)| format!("{t}")).collect();
-    let status = Command::new(python)
-        .arg(root().join("tests/python/check_vtk.py"))
-        .arg(out.join("mooring-chain.pvd"))
-        .args(["--points", "81", "--cells", "line=80"])
-        .args([
-            "--point-arrays",
-            "displacement:3,velocity:3,hydro_force:3,reaction:3",
-        ])
-        .args([
-            "--cell-arrays",
-            "tension:1,strain:1,wake_factor:1,role_id:1",
-        ])
-        .args(["--times", &times.join(",")])
-        .status()
+    cmd.arg(out.join("open_in_paraview.py"))
+        .args(["--warp", "1", "--last", "--report"])
+        .arg(&report);
+    if display || xvfb {
+        cmd.arg("--screenshot").arg(&shot);
+    } else {
+        eprintln!("note: no display and no xvfb-run: the ParaView script runs without a picture");
+    }
+    let res = cmd.output().unwrap();
+    assert!(
+        res.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&res.stdout),
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
+    assert_eq!(r["times"], serde_json::json!([0.0, 0.5, 1.0]));
+    assert_eq!(r["points"].as_u64(), Some(273), "{r}");
+    let range = r["tension_range"].as_array().unwrap();
+    assert_eq!(range[0].as_f64(), Some(0.0), "no negative tension: {r}");
+    assert!(range[1].as_f64().unwrap() > 1e3, "{r}");
+    let lines: Vec<&str> = r["line_arrays"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    for a in ["tension", "slack", "axial_force"] {
+        assert!(lines.contains(&a), "{a} missing: {lines:?}");
+    }
+    // Reference + Append Attributes + Warp By Vector (scale 1) reproduces the computed shape
+    // (ParaView's warp works in single precision: 1e-5 m on a 100 m model).
+    let err = r["warp_max_error"].as_f64().unwrap();
+    assert!(err < 1e-5, "warp from the reference is off by {err} m");
+    if display || xvfb {
+        let png = std::fs::read(&shot).unwrap();
+        assert!(
+            png.starts_with(b"\x89PNG") && png.len() > 10_000,
+            "{} bytes",
+            png.len()
+        );
+    }
+    // As the GUI runs it (no __file__, empty argv[0], another working directory): the script
+    // finds the run through the directory `aqua run` recorded in it.
+    let wrapper = dir.join("as_gui.py");
+    let report2 = dir.join("report_gui.json");
+    std::fs::write(
+        &wrapper,
+        format!(
+            "import sys\nsys.argv = ['', '--report', {:?}]\n\
+             exec(compile(open({:?}).read(), 'open_in_paraview.py', 'exec'), \
+             {{'__name__': '__main__'}})\n",
+            report2.to_str().unwrap(),
+            out.join("open_in_paraview.py").to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let res = Command::new(&pv)
+        .arg(&wrapper)
+        .current_dir(std::env::temp_dir())
+        .output()
         .unwrap();
-    assert!(status.success(), "meshio read-back failed");
+    assert!(
+        res.status.success(),
+        "{}",
+        String::from_utf8_lossy(&res.stderr)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report2).unwrap()).unwrap();
+    assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
 }
 
 #[test]

@@ -4,7 +4,8 @@
 //!   docs/theory/cages.md#cage-types to #multiple-cages), a flat net panel builder
 //!   ([`PanelParams`], #flat-net-panel) and a single-line builder ([`LineParams`], #single-line).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
-//! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]).
+//! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]), and the
+//!   run output, a multiblock series with one named block per object and kind ([`vtm`]).
 //!
 //! # Governing relations
 //!
@@ -45,6 +46,7 @@ pub mod mesh;
 pub mod net;
 pub mod panel;
 pub mod vtk;
+pub mod vtm;
 
 pub use cage::{CageParams, CageType, ResolvedCage};
 pub use error::{FilePos, MeshError, Result};
@@ -57,6 +59,7 @@ pub use mesh::{
 pub use net::{NetGrouping, NetParams, NetResolved};
 pub use panel::{PanelFixed, PanelParams};
 pub use vtk::{PvdWriter, VtkArray, VtkArrays, VtuSeries, write_vtu};
+pub use vtm::{BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays};
 
 /// Build several cages, panels or lines into one mesh (objects appended in order).
 pub fn merge(meshes: impl IntoIterator<Item = Mesh>) -> Mesh {

@@ -578,3 +578,70 @@ fn fixtures_still_parse() {
     let e: MeshError = parse_msh(Path::new("x.msh"), b"$MeshFormat\n4.1 0 8\n").unwrap_err();
     assert!(matches!(e, MeshError::Gmsh { .. }), "{e}");
 }
+
+/// A first-order tetrahedral mesh (MSH 4.1 and 2.2, written by hand).
+const TET41: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"net\"\n\
+$EndPhysicalNames\n$Entities\n0 0 0 1\n1 0 0 0 1 1 1 1 1 0\n$EndEntities\n$Nodes\n1 4 1 4\n\
+3 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n\
+1 1 2 3 4\n$EndElements\n";
+const TET22: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n\
+3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n";
+
+#[test]
+fn volume_elements_are_named_as_such_not_as_higher_order() {
+    for (name, text, line) in [("t41.msh", TET41, 27), ("t22.msh", TET22, 13)] {
+        let e = run(name, text.as_bytes()).unwrap_err();
+        assert!(e.starts_with(&format!("{name}: line {line}: ")), "{e}");
+        assert!(
+            e.contains("4-node tetrahedron") && e.contains("volume elements are not supported"),
+            "{e}"
+        );
+        assert!(
+            e.contains("1 (2-node line), 2 (3-node triangle), 3 (4-node quadrangle)"),
+            "{e}"
+        );
+        assert!(
+            !e.contains("first-order"),
+            "a first-order mesh told to re-mesh: {e}"
+        );
+    }
+    // A second-order triangle is told to re-mesh with first-order elements.
+    let tri6 = TET22.replace("1 4 2 1 1 1 2 3 4", "1 9 2 1 1 1 2 3 4 1 2");
+    let e = run("t6.msh", tri6.as_bytes()).unwrap_err();
+    assert!(e.contains("Mesh.ElementOrder = 1"), "{e}");
+}
+
+#[test]
+fn v41_missing_sections_are_reported_with_a_line() {
+    let cut = &TET41[..TET41.find("$Elements").unwrap()];
+    let e = run("c.msh", cut.as_bytes()).unwrap_err();
+    let last = cut.lines().count() + 1;
+    assert!(
+        e.starts_with(&format!("c.msh: line {last}: ")) && e.contains("no $Elements"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_unknown_physical_name_is_reported_at_once() {
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 1 \"cable\"\n\
+                1 2 \"ropes\"\n0 3 \"weights\"\n$EndPhysicalNames\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n\
+                3 2 0 0\n$EndNodes\n$Elements\n3\n1 1 2 1 1 1 2\n2 1 2 2 2 2 3\n\
+                3 15 2 3 3 3\n$EndElements\n";
+    let raw = parse_msh(Path::new("n.msh"), text.as_bytes()).unwrap();
+    let params = GmshParams {
+        file: PathBuf::from("n.msh"),
+        ..Default::default()
+    };
+    let e = import_raw(&params, &raw).unwrap_err().to_string();
+    assert!(
+        e.contains("2 physical group names are not understood"),
+        "{e}"
+    );
+    assert!(
+        e.contains("`cable` (line 6)") && e.contains("`weights` (line 8)"),
+        "{e}"
+    );
+    assert!(!e.contains("`ropes`"), "ropes is valid: {e}");
+    assert!(e.contains("valid names: net (alias net_panels"), "{e}");
+}

@@ -240,3 +240,98 @@ fn independent_reader_python_meshio() {
     assert!(ok, "{msg}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The multiblock layout: one block per object copy and kind, named; the points blocks
+/// partition the nodes and the lines/panels blocks hold every cell once; the `.pvd` grows by one
+/// valid entry per step and rejects a time that does not increase.
+#[test]
+fn multiblock_series_names_objects_copies_and_kinds() {
+    use aqua_mesh::{BlockArray, BlockKind, MultiblockSeries, StepArrays};
+    let mut p = CageParams::new(CageType::Cct);
+    p.name = Some("pen".into());
+    p.origins = Some(vec![[0.0, 0.0, 0.0], [100.0, 0.0, 0.0]]);
+    let m = p.build().unwrap();
+    let dir = tmpdir("vtm");
+    let mut s = MultiblockSeries::new(&dir, "farm", &m).unwrap();
+    let names: Vec<String> = s.layout().blocks.iter().map(|b| b.name()).collect();
+    assert_eq!(
+        names,
+        [
+            "pen#0/lines",
+            "pen#0/panels",
+            "pen#0/points",
+            "pen#1/lines",
+            "pen#1/panels",
+            "pen#1/points"
+        ]
+    );
+    let mut nodes: Vec<usize> = s
+        .layout()
+        .blocks
+        .iter()
+        .filter(|b| b.kind == BlockKind::Points)
+        .flat_map(|b| b.nodes.clone())
+        .collect();
+    nodes.sort_unstable();
+    assert_eq!(nodes, (0..m.nodes.len()).collect::<Vec<_>>());
+    let count = |k: BlockKind| -> usize {
+        s.layout()
+            .blocks
+            .iter()
+            .filter(|b| b.kind == k)
+            .map(|b| b.cells.len())
+            .sum()
+    };
+    assert_eq!(count(BlockKind::Lines), m.lines.len());
+    assert_eq!(count(BlockKind::Panels), m.panels.len());
+    let tables = s.names().clone();
+    assert_eq!(tables.object_names, ["pen"]);
+    assert_eq!(tables.group_names[m.lines[0].group], "pen/net_twines");
+    let arrays = |t: f64| StepArrays {
+        point: vec![BlockArray::vectors(
+            "displacement",
+            &vec![[t, 0.0, 0.0]; m.nodes.len()],
+        )],
+        line: vec![BlockArray::int("slack", vec![0; m.lines.len()])],
+        panel: vec![],
+    };
+    s.write_reference(&m).unwrap();
+    for (k, t) in [0.0, 0.5, 2.0].into_iter().enumerate() {
+        s.write_step(t, &m, &m.nodes, &arrays(t)).unwrap();
+        let pvd = std::fs::read_to_string(dir.join("farm.pvd")).unwrap();
+        assert_eq!(pvd.matches("<DataSet").count(), k + 1, "{pvd}");
+        assert!(pvd.ends_with("  </Collection>\n</VTKFile>\n"), "{pvd}");
+        let vtm = std::fs::read_to_string(dir.join(format!("farm_{k:06}.vtm"))).unwrap();
+        assert!(vtm.contains("<Block index=\"1\" name=\"pen#1\">"), "{vtm}");
+        assert!(vtm.contains(&format!(
+            "name=\"panels\" file=\"farm_{k:06}/pen_1_panels.vtu\""
+        )));
+    }
+    assert!(s.write_step(2.0, &m, &m.nodes, &arrays(2.0)).is_err());
+    let mut bad = arrays(3.0);
+    bad.line[0] = BlockArray::int("slack", vec![0; 3]);
+    let err = s
+        .write_step(3.0, &m, &m.nodes, &bad)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("slack") && err.contains("expected"), "{err}");
+    let mut bad = arrays(3.0);
+    bad.point[0] = BlockArray::scalar("fixed", vec![0.0; m.nodes.len()]);
+    let err = s
+        .write_step(3.0, &m, &m.nodes, &bad)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("already used"), "{err}");
+    assert_eq!(s.entries().len(), 3);
+    // A new series with the same stem clears the old steps (and only those).
+    std::fs::write(dir.join("notes.txt"), "keep").unwrap();
+    let _ = MultiblockSeries::new(&dir, "farm", &m).unwrap();
+    let left: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("farm_0") || n == "farm.pvd")
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+    assert!(dir.join("notes.txt").exists() && dir.join("farm_reference.vtm").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -42,7 +42,8 @@ impl Diagnostic {
         }
     }
 
-    /// Warnings from the plain messages a lower crate returns.
+    /// Diagnostics from the plain messages a lower crate returns: a `notice: ` message is a
+    /// note, anything else a warning (a `warning: ` prefix is dropped).
     pub fn warnings<'a>(
         code: &'static str,
         location: &str,
@@ -50,7 +51,18 @@ impl Diagnostic {
     ) -> Vec<Self> {
         messages
             .into_iter()
-            .map(|m| Self::warning(code, location, m.clone()))
+            .map(|m| {
+                // Lower crates prefix their messages with `notice: ` or `warning: `; the
+                // severity carries that here, so it is not printed twice.
+                if let Some(rest) = m.strip_prefix("notice: ") {
+                    Self {
+                        severity: Severity::Note,
+                        ..Self::warning(code, location, rest)
+                    }
+                } else {
+                    Self::warning(code, location, m.strip_prefix("warning: ").unwrap_or(m))
+                }
+            })
             .collect()
     }
 }

@@ -1,24 +1,42 @@
-//! Run files: a ParaView time series (`<scene>.pvd` + one `.vtu` per output step),
-//! `summary.csv` (one row per output step) and `run.json` (resolved scene, final values, timing).
+//! Run files: a ParaView multiblock time series (`<scene>.pvd` → `<scene>_NNNNNN.vtm` per output
+//! step → one `.vtu` per object and kind in `<scene>_NNNNNN/`, see [`aqua_mesh::vtm`]), the
+//! undeformed geometry once (`<scene>_reference.vtm`), a pvpython starting point
+//! (`open_in_paraview.py`), `summary.csv` (one row per output step) and `run.json` (resolved
+//! scene, name tables, final values, timing).
 //!
-//! Every file is written so that an interrupted run leaves it readable: `.vtu` files and the
-//! `.pvd` are written to a temporary name and renamed, the `.pvd` lists exactly the steps on
-//! disk, and `summary.csv` is flushed row by row.
+//! Every file is written so that an interrupted run leaves it readable: block files and the
+//! `.vtm` are written to a temporary name and renamed, the `.pvd` lists a step only once its
+//! `.vtm` is complete, and `summary.csv` is flushed row by row.
+//!
+//! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
+//! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
+//! (1 where a DOF is fixed or prescribed); lines: `tension`
+//! (the axial force where it pulls, 0 where the member is slack), `slack` (1 where the axial
+//! force is ≤ 0), `axial_force` (signed, incl. axial damping: negative values are compression of
+//! bars or the damping and compression-ratio parts of a slack cable), `strain`, `wake_factor`;
+//! panels: `wake_factor`.
 
 use crate::build::Built;
 use crate::error::{Result, SimError};
 use crate::post::SummaryRow;
 use aqua_fem::{Outputs, State};
-use aqua_mesh::{VtkArray, VtkArrays, VtuSeries};
+use aqua_mesh::{BlockArray, MultiblockSeries, NameTables, StepArrays};
 use nalgebra::Point3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+
+/// The pvpython script written next to every run (`DIR/open_in_paraview.py`).
+pub const PARAVIEW_SCRIPT: &str = include_str!("open_in_paraview.py");
 
 /// Writers of one run.
 #[derive(Debug)]
 pub struct RunFiles {
     dir: PathBuf,
-    series: VtuSeries,
+    series: MultiblockSeries,
+    /// Point mass per node [kg] (point bodies incl. weights W/g), the same every step.
+    point_mass: Vec<f64>,
+    /// 1 where a node has a fixed or prescribed DOF (builders, `[[fix]]`, `[[prescribed]]`).
+    supported: Vec<i32>,
     csv: std::io::BufWriter<std::fs::File>,
     csv_path: PathBuf,
     /// Output steps written.
@@ -31,20 +49,31 @@ fn io(what: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> SimErro
 }
 
 impl RunFiles {
-    /// Creates the output directory, the series and `summary.csv` with its header.
+    /// Creates the output directory, removes the steps of an earlier run of the same scene,
+    /// writes the undeformed geometry, the ParaView script and `summary.csv`'s header.
     pub fn create(dir: &Path, scene_name: &str, built: &Built) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(io("creating the output directory", dir))?;
-        // Stale steps of an earlier run would be listed by nobody but confuse a reader.
-        if let Ok(entries) = std::fs::read_dir(dir) {
-            let prefix = format!("{scene_name}_");
-            for e in entries.flatten() {
-                let name = e.file_name().to_string_lossy().into_owned();
-                if name.starts_with(&prefix) && name.ends_with(".vtu") {
-                    let _ = std::fs::remove_file(e.path());
-                }
+        let out = |e| SimError::Output(Box::new(e));
+        let series = MultiblockSeries::new(dir, scene_name, &built.mesh).map_err(out)?;
+        series.write_reference(&built.mesh).map_err(out)?;
+        let script = dir.join("open_in_paraview.py");
+        let abs = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+        let here = serde_json::to_string(&abs.to_string_lossy()).unwrap_or_else(|_| "None".into());
+        let text =
+            PARAVIEW_SCRIPT.replacen("WRITTEN_IN = None", &format!("WRITTEN_IN = {here}"), 1);
+        std::fs::write(&script, text).map_err(io("writing", &script))?;
+        let mut point_mass = vec![0.0; built.mesh.nodes.len()];
+        for b in built.model.point_bodies() {
+            if let Some(m) = point_mass.get_mut(b.node) {
+                *m += b.mass;
             }
         }
-        let series = VtuSeries::new(dir, scene_name).map_err(|e| SimError::Output(Box::new(e)))?;
+        let mut supported = vec![0; built.mesh.nodes.len()];
+        for &n in &built.supported_nodes {
+            if let Some(s) = supported.get_mut(n) {
+                *s = 1;
+            }
+        }
         let path = dir.join("summary.csv");
         let mut csv =
             std::io::BufWriter::new(std::fs::File::create(&path).map_err(io("creating", &path))?);
@@ -54,6 +83,8 @@ impl RunFiles {
         Ok(Self {
             dir: dir.to_path_buf(),
             series,
+            point_mass,
+            supported,
             csv,
             csv_path: path,
             steps_written: 0,
@@ -62,7 +93,7 @@ impl RunFiles {
 
     /// The `.pvd` path.
     pub fn pvd_path(&self) -> PathBuf {
-        self.series.pvd().path().to_path_buf()
+        self.series.pvd_path().to_path_buf()
     }
 
     /// The output directory.
@@ -70,7 +101,12 @@ impl RunFiles {
         &self.dir
     }
 
-    /// Writes one output step: the `.vtu` (and `.pvd`) and a `summary.csv` row.
+    /// Object, group, role and block names (the field data of every block; `run.json`).
+    pub fn names(&self) -> &NameTables {
+        self.series.names()
+    }
+
+    /// Writes one output step: the blocks, the `.vtm` (and `.pvd` line) and a `summary.csv` row.
     pub fn write_step(
         &mut self,
         built: &Built,
@@ -91,41 +127,46 @@ impl RunFiles {
             }
             Ok(())
         };
-        let flat = |v: &[[f64; 3]]| -> Vec<f64> { v.iter().flatten().copied().collect() };
         let positions: Vec<Point3<f64>> = x.iter().map(|p| Point3::from(*p)).collect();
         let disp: Vec<[f64; 3]> = x
             .iter()
             .zip(model.nodes())
             .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2]])
             .collect();
-        let vector = |name: &str, values: Vec<f64>| VtkArray {
-            name: name.into(),
-            components: 3,
-            values,
-        };
         let point = vec![
-            vector("displacement", flat(&disp)),
-            vector("velocity", flat(&state.v)),
-            vector("hydro_force", flat(&out.hydro_force)),
-            vector("reaction", flat(&out.reaction)),
+            BlockArray::vectors("displacement", &disp),
+            BlockArray::vectors("velocity", &state.v),
+            BlockArray::vectors("hydro_force", &out.hydro_force),
+            BlockArray::vectors("reaction", &out.reaction),
+            BlockArray::scalar("point_mass", self.point_mass.clone()),
+            BlockArray::int("supported", self.supported.clone()),
         ];
         for a in &point {
-            finite(&a.name, &a.values)?;
+            if let aqua_mesh::vtm::ArrayValues::F64 { values, .. } = &a.values {
+                finite(&a.name, values)?;
+            }
         }
-        let n_cells = mesh.lines.len() + mesh.panels.len();
-        let mut tension = vec![0.0; n_cells];
-        let mut strain = vec![0.0; n_cells];
-        tension[..mesh.lines.len()].copy_from_slice(&out.tension);
-        strain[..mesh.lines.len()].copy_from_slice(&out.strain);
-        finite("tension", &tension)?;
-        finite("strain", &strain)?;
-        let cell = vec![
-            VtkArray::scalar("tension", tension),
-            VtkArray::scalar("strain", strain),
-            VtkArray::scalar("wake_factor", wake.to_vec()),
-        ];
+        let nl = mesh.lines.len();
+        let axial = &out.tension[..nl.min(out.tension.len())];
+        finite("axial force", axial)?;
+        finite("strain", &out.strain)?;
+        finite("wake factor", wake)?;
+        let tension: Vec<f64> = axial.iter().map(|&n| n.max(0.0)).collect();
+        let slack: Vec<i32> = axial.iter().map(|&n| i32::from(n <= 0.0)).collect();
+        let (wake_lines, wake_panels) = wake.split_at(nl.min(wake.len()));
+        let arrays = StepArrays {
+            point,
+            line: vec![
+                BlockArray::scalar("tension", tension),
+                BlockArray::int("slack", slack),
+                BlockArray::scalar("axial_force", axial.to_vec()),
+                BlockArray::scalar("strain", out.strain[..nl.min(out.strain.len())].to_vec()),
+                BlockArray::scalar("wake_factor", wake_lines.to_vec()),
+            ],
+            panel: vec![BlockArray::scalar("wake_factor", wake_panels.to_vec())],
+        };
         self.series
-            .write_step(state.t, mesh, Some(&positions), &VtkArrays { point, cell })
+            .write_step(state.t, mesh, &positions, &arrays)
             .map_err(|e| SimError::Output(Box::new(e)))?;
         let line: Vec<String> = row.values_text();
         writeln!(self.csv, "{}", line.join(","))

@@ -1,7 +1,8 @@
 //! Scene files (TOML): the schema, and reading with errors that name the file, the line, the
 //! key and what would be valid.
 //!
-//! Layout (key names as in the top-level `README.md`; `x.md#anchor` is a section of
+//! Every key is listed in docs/guide/scene.md (checked by `tests/guide.rs` against
+//! [`scene_keys`]). Layout (key names as in the top-level `README.md`; `x.md#anchor` is a section of
 //! `docs/theory/x.md`, `README.md#anchor` one of the top-level README):
 //!
 //! ```toml
@@ -832,6 +833,158 @@ impl Ctx<'_> {
             overrides,
         })
     }
+}
+
+/// The probe key of [`scene_keys`]: no schema type has it.
+const PROBE: &str = "__aqua_probe__";
+
+/// The field names a parse error of an unknown `PROBE` key lists (serde's "expected one of").
+fn probed_fields(msg: &str) -> Option<Vec<String>> {
+    let at = msg.find(&format!("unknown field `{PROBE}`"))?;
+    let rest = &msg[at..];
+    let rest = rest.lines().next().unwrap_or(rest);
+    if rest.contains("there are no fields") {
+        return Some(Vec::new());
+    }
+    let list = &rest[rest.find("expected")?..];
+    Some(
+        list.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect(),
+    )
+}
+
+/// The fields of a schema type, from its own unknown-field message.
+fn fields_of<T: DeserializeOwned>() -> Vec<String> {
+    let mut t = Table::new();
+    t.insert(PROBE.into(), Value::Integer(1));
+    match Value::Table(t).try_into::<T>() {
+        Ok(_) => Vec::new(),
+        Err(e) => probed_fields(&e.to_string()).unwrap_or_default(),
+    }
+}
+
+/// Parses a probe scene whose table at `path` holds `leaf`; the error text, if any.
+fn probe_scene(path: &[String], leaf: Value) -> Option<String> {
+    // Array sections are entered as an array of one table; `<name>` stands for a map key.
+    let mut value = leaf;
+    for seg in path.iter().rev() {
+        let mut t = Table::new();
+        match seg.strip_suffix("[]") {
+            Some(key) => t.insert(key.to_string(), Value::Array(vec![value])),
+            None => t.insert(seg.clone(), value),
+        };
+        value = Value::Table(t);
+    }
+    let text = toml::to_string(&value).ok()?;
+    parse_scene(&text, Path::new("probe.toml"))
+        .err()
+        .map(|e| e.to_string())
+}
+
+/// Every key a scene file accepts, as dotted paths (`sea.current.velocity`,
+/// `cage.net.solidity`, `cage.groups.<name>.diameter`), derived from the schema types
+/// themselves: each table is given an unknown key and the parser's own "expected one of"
+/// list is read back, recursing into every key that is a table, an array of tables or a map of
+/// tables. The `net.*` and Morison keys that [`parse_scene`] splits off before the mesh types
+/// see them come from their own types ([`NetHydro`], [`LineHydro`]), as do `[[group]]`'s
+/// section keys ([`SectionOverride`]).
+pub fn scene_keys() -> Vec<String> {
+    fn walk(path: &mut Vec<String>, out: &mut Vec<String>) {
+        let probe = || {
+            let mut t = Table::new();
+            t.insert(PROBE.into(), Value::Integer(1));
+            Value::Table(t)
+        };
+        let fields = match probe_scene(path, probe())
+            .as_deref()
+            .and_then(probed_fields)
+        {
+            Some(f) => f,
+            None => return,
+        };
+        for f in fields {
+            let shown = |p: &[String], f: &str| {
+                let mut v: Vec<String> = p.iter().map(|s| s.replace("[]", "")).collect();
+                v.push(f.to_string());
+                v.join(".")
+            };
+            let before = out.len();
+            // A table?
+            path.push(f.clone());
+            if probe_scene(path, probe())
+                .as_deref()
+                .and_then(probed_fields)
+                .is_some()
+            {
+                walk(path, out);
+            }
+            path.pop();
+            // An array of tables?
+            if out.len() == before {
+                path.push(format!("{f}[]"));
+                let hit = probe_scene(&path[..path.len() - 1], {
+                    let mut t = Table::new();
+                    t.insert(f.clone(), Value::Array(vec![probe()]));
+                    Value::Table(t)
+                })
+                .as_deref()
+                .and_then(probed_fields)
+                .is_some();
+                if hit {
+                    walk(path, out);
+                }
+                path.pop();
+            }
+            // A map of tables?
+            if out.len() == before {
+                path.push(f.clone());
+                path.push("<name>".into());
+                if probe_scene(path, probe())
+                    .as_deref()
+                    .and_then(probed_fields)
+                    .is_some()
+                {
+                    walk(path, out);
+                }
+                path.pop();
+                path.pop();
+            }
+            if out.len() == before {
+                out.push(shown(path, &f));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(&mut Vec::new(), &mut out);
+    // Keys split off before the mesh types see them.
+    for section in ["cage", "panel", "mesh"] {
+        out.extend(
+            fields_of::<NetHydro>()
+                .into_iter()
+                .map(|k| format!("{section}.net.{k}")),
+        );
+    }
+    for section in ["line", "group"] {
+        out.extend(
+            fields_of::<LineHydro>()
+                .into_iter()
+                .map(|k| format!("{section}.{k}")),
+        );
+    }
+    // `[[group]]` takes its `name` out before its section keys are typed.
+    out.retain(|k| k != "group");
+    out.push("group.name".into());
+    out.extend(
+        fields_of::<SectionOverride>()
+            .into_iter()
+            .map(|k| format!("group.{k}")),
+    );
+    out.sort();
+    out.dedup();
+    out
 }
 
 #[cfg(test)]

@@ -26,7 +26,28 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("scene {} ({}): valid", report.scene, a.scene.display());
-    crate::commands::mesh::report(&prep.built.mesh, None, false)?;
+    // The mesh notices are printed once, with the other diagnostics at the end.
+    crate::commands::mesh::report_with(&prep.built.mesh, None, false, false)?;
+    // `[[point]]` bodies are not builder weights: their totals on their own line.
+    for (i, p) in prep.scene.point.iter().enumerate() {
+        let v = &p.value;
+        let n = aqua_sim::build::resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
+        let k = n as f64;
+        let g = prep.built.sea.constants().gravity;
+        println!(
+            "[[point]] #{} on {} ({n} node{}): mass {:.1} kg (weight {:.1} N), force [{:.1}, {:.1}, \
+             {:.1}] N, volume {:.4} m³",
+            i + 1,
+            v.nodes,
+            if n == 1 { "" } else { "s" },
+            k * v.mass,
+            k * v.mass * g,
+            k * v.force[0],
+            k * v.force[1],
+            k * v.force[2],
+            k * v.volume
+        );
+    }
     println!("physics:");
     for p in &report.physics {
         println!(

@@ -304,6 +304,17 @@ pub fn run_cage(params: &CageParams, out: Option<&Path>, json: bool) -> anyhow::
 
 /// Print the report of `mesh` (text or JSON) and write it to `out` if given.
 pub fn report(mesh: &Mesh, out: Option<&Path>, json: bool) -> anyhow::Result<()> {
+    report_with(mesh, out, json, true)
+}
+
+/// [`report`]; `notices` false leaves the mesh notices out of the text (a caller that prints
+/// them as diagnostics, like `aqua check`, says each once).
+pub fn report_with(
+    mesh: &Mesh,
+    out: Option<&Path>,
+    json: bool,
+    notices: bool,
+) -> anyhow::Result<()> {
     if let Some(path) = out {
         if path.extension().and_then(|e| e.to_str()) != Some("vtu") {
             return Err(InputError::new(format!(
@@ -390,16 +401,25 @@ pub fn report(mesh: &Mesh, out: Option<&Path>, json: bool) -> anyhow::Result<()>
         }
     }
     println!(
-        "total: {} nodes, {} lines, {} panels ({} quads, {} triangles), point weights {:.1} N",
+        "total: {} nodes, {} lines, {} panels ({} quads, {} triangles){}",
         summary.nodes,
         summary.lines,
         summary.panels,
         summary.quads,
         summary.triangles,
-        summary.total_weight
+        if summary.total_weight > 0.0 {
+            format!(
+                ", builder weights (sinkers, tip, centre) {:.1} N",
+                summary.total_weight
+            )
+        } else {
+            String::new()
+        }
     );
-    for n in &summary.notices {
-        println!("{n}");
+    if notices {
+        for n in &summary.notices {
+            println!("{n}");
+        }
     }
     if let Some(path) = out {
         println!("wrote {}", path.display());

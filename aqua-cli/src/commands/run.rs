@@ -1,5 +1,7 @@
 //! `aqua run scene.toml --out DIR`: static and/or dynamic solve with a progress bar, writing
-//! `DIR/<scene>.pvd` + `.vtu` per output step, `DIR/summary.csv` and `DIR/run.json`.
+//! `DIR/<scene>.pvd` + a multiblock `.vtm` per output step (blocks in `DIR/<scene>_NNNNNN/`), the
+//! undeformed `DIR/<scene>_reference.vtm`, `DIR/open_in_paraview.py`, `DIR/summary.csv` and
+//! `DIR/run.json`.
 //!
 //! Ctrl-C or a failed step stops cleanly: every step already written stays readable, the
 //! `.pvd` lists exactly those steps, `run.json` records why the run ended, and the exit code is
@@ -205,6 +207,8 @@ fn run_json(
         "final": record.last,
         "output_steps": files.steps_written,
         "pvd": files.pvd_path(),
+        "paraview_script": files.dir().join("open_in_paraview.py"),
+        "names": files.names(),
         "wall_time_s": record.wall,
         "dynamic_wall_time_s": record.dyn_wall,
         "steps": record.steps,
@@ -240,7 +244,7 @@ fn print_step_control(r: &RunRecord) {
 fn print_final(files: &RunFiles, r: &RunRecord) {
     if let Some(last) = &r.last {
         println!(
-            "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {:.4}",
+            "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {}",
             last.t,
             last.net_force[0],
             last.net_force[1],
@@ -248,7 +252,12 @@ fn print_final(files: &RunFiles, r: &RunRecord) {
             last.reaction[0],
             last.reaction[1],
             last.reaction[2],
-            last.volume_ratio
+            // The ratio is 0 only where there is no enclosed volume to compare with.
+            if last.volume_ratio > 0.0 {
+                format!("{:.4}", last.volume_ratio)
+            } else {
+                "n/a (no closed net)".to_string()
+            }
         );
     }
     println!(

@@ -188,8 +188,10 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
         * Rotation3::from_axis_angle(&Vector3::x_axis(), rot[0].to_radians());
     let shift = Vector3::from(tr) + Vector3::from(origins[0]);
 
-    // Physical names → targets (after rename).
+    // Physical names → targets (after rename). Every name that is not understood is reported
+    // at once.
     let mut targets: HashMap<(i32, i32), Target> = HashMap::new();
+    let mut bad: Vec<(FilePos, String)> = Vec::new();
     for pn in &raw.names {
         let mapped = params.rename.get(&pn.name).unwrap_or(&pn.name);
         match classify(mapped, pn.dim) {
@@ -202,17 +204,29 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
                 } else {
                     String::new()
                 };
-                return Err(gerr(
-                    file,
-                    pn.pos,
-                    format!(
-                        "{reason}{renamed}; valid names: {VALID_NAMES}. Rename the group in gmsh \
-                         or map it with `rename = {{ \"{}\" = \"<role>\" }}`",
-                        pn.name
-                    ),
-                ));
+                bad.push((pn.pos, format!("{reason}{renamed} ({})", pn.pos)));
             }
         }
+    }
+    if let Some((pos, _)) = bad.first() {
+        let list: Vec<&str> = bad.iter().map(|(_, m)| m.as_str()).collect();
+        let example = raw
+            .names
+            .iter()
+            .find(|n| classify(params.rename.get(&n.name).unwrap_or(&n.name), n.dim).is_err())
+            .map_or("<name>", |n| n.name.as_str());
+        return Err(gerr(
+            file,
+            *pos,
+            format!(
+                "{} physical group name{} not understood: {}; valid names: {VALID_NAMES}. \
+                 Rename the groups in gmsh or map them with `rename = {{ \"{example}\" = \
+                 \"<role>\" }}`",
+                bad.len(),
+                if bad.len() == 1 { " is" } else { "s are" },
+                list.join("; ")
+            ),
+        ));
     }
     for k in params.rename.keys() {
         if !raw.names.iter().any(|n| &n.name == k) {
@@ -384,10 +398,13 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
                     None
                 } else {
                     Some(default_frame_section(n).unwrap_or_else(|| {
-                        notices.push(format!(
+                        // Said only when the scene does not set the section itself.
+                        if !params.groups.contains_key(n) {
+                            notices.push(format!(
                             "notice: {obj}: line group `{n}` uses the rope default section (d = \
                              0.05 m, E = 1e9 Pa, 1100 kg/m³); set groups.{n} to change it"
-                        ));
+                            ));
+                        }
                         Section::cable("rope", 0.05, 1.0e9, 1100.0)
                     }))
                 };
@@ -474,6 +491,7 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
     if let (Some(g), false) = (tw_group, has_twines) {
         let mut seen = BTreeSet::new();
         let faces: Vec<PanelNodes> = b.mesh.panels.iter().map(|p| p.nodes).collect();
+        let triangles = faces.iter().any(|f| matches!(f, PanelNodes::Tri(_)));
         for f in faces {
             let n = f.as_slice();
             for i in 0..n.len() {
@@ -485,8 +503,14 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
         }
         notices.push(format!(
             "notice: {obj}: no `twines` group; {} net twines derived from the unique edges of \
-             the net faces (triangle diagonals included)",
-            seen.len()
+             the net faces{}",
+            seen.len(),
+            if triangles {
+                " (the edges of triangles included, so a triangulated quad mesh gets its \
+                 diagonals as twines)"
+            } else {
+                ""
+            }
         ));
     }
     b.finish_element_nodes();

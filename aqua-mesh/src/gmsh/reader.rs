@@ -79,14 +79,34 @@ pub fn element_type_name(kind: i32) -> &'static str {
     }
 }
 
+/// Gmsh element types of volume elements (tetrahedra, hexahedra, prisms, pyramids of any
+/// order).
+fn is_volume_type(kind: i32) -> bool {
+    matches!(kind, 4..=7 | 11..=14 | 17..=19 | 29..=35 | 71..=79 | 92..=93)
+}
+
+const SUPPORTED_TYPES: &str =
+    "1 (2-node line), 2 (3-node triangle), 3 (4-node quadrangle), 15 (1-node point)";
+
 pub(crate) fn unsupported_type(file: &Path, pos: FilePos, tag: u64, kind: i32) -> MeshError {
+    let advice = if is_volume_type(kind) {
+        "volume elements are not supported: aqua models nets, ropes and nodes, so export only \
+         the surfaces, curves and points (in gmsh, put only those in physical groups, or set \
+         Mesh.SaveAll = 0)"
+            .to_string()
+    } else if matches!(kind, 1..=3 | 15) {
+        "this type is supported here; the file is inconsistent".to_string()
+    } else {
+        "higher-order elements are not supported: re-mesh with first-order elements \
+         (Mesh.ElementOrder = 1)"
+            .to_string()
+    };
     MeshError::Gmsh {
         file: file.to_path_buf(),
         position: pos,
         message: format!(
-            "in $Elements: element {tag} has type {kind} ({}), which aqua does not use; supported types: 1 \
-             (2-node line), 2 (3-node triangle), 3 (4-node quadrangle), 15 (point). Re-mesh with \
-             first-order elements (Mesh.ElementOrder = 1)",
+            "in $Elements: element {tag} has type {kind} ({}); {advice}. Supported types: \
+             {SUPPORTED_TYPES}",
             element_type_name(kind)
         ),
     }
@@ -658,14 +678,14 @@ fn parse_v41_with(
     let Some(nodes_sec) = data.nodes else {
         return Err(gerr(
             path,
-            FilePos::Byte(bytes.len()),
+            pos_of(bytes.len()),
             "file has no $Nodes section (truncated?)",
         ));
     };
     let Some(elem_sec) = data.elements else {
         return Err(gerr(
             path,
-            FilePos::Byte(bytes.len()),
+            pos_of(bytes.len()),
             "file has no $Elements section (truncated?)",
         ));
     };

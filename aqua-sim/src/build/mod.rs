@@ -103,7 +103,15 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
     let st = structure::build_structure(scene, &mesh, env, prescribed)?;
     let model = st.builder.build().map_err(|e| SimError::at(file, e))?;
     let loads = water::build_water_loads(scene, &mesh, &nets, &st.sections, st.hydro_points)?;
-    let mut diagnostics = Diagnostic::warnings("mesh/notice", "mesh", &mesh.notices);
+    // A gmsh line group's "uses the rope default section" notice is moot once a `[[group]]`
+    // sets its section.
+    let notices: Vec<String> = mesh
+        .notices
+        .iter()
+        .filter(|n| !section_set_by_group(scene, n))
+        .cloned()
+        .collect();
+    let mut diagnostics = Diagnostic::warnings("mesh/notice", "mesh", &notices);
     diagnostics.extend(Diagnostic::warnings(
         "sea/range",
         "sea",
@@ -221,4 +229,23 @@ pub fn find_line_ends(mesh: &Mesh) -> Vec<LineEnds> {
         }
     }
     line_ends
+}
+
+/// True if `notice` is aqua-mesh's "line group `n` uses the rope default section" for a group
+/// whose section a `[[group]]` (`n` or `object/n`) sets.
+fn section_set_by_group(scene: &Scene, notice: &str) -> bool {
+    let Some(rest) = notice.strip_prefix("notice: ") else {
+        return false;
+    };
+    let Some((obj, rest)) = rest.split_once(": line group `") else {
+        return false;
+    };
+    let Some((group, _)) = rest.split_once("` uses the rope default section") else {
+        return false;
+    };
+    scene.group.iter().any(|g| {
+        let g = &g.value;
+        (g.name == group || g.name == format!("{obj}/{group}"))
+            && g.section != aqua_mesh::SectionOverride::default()
+    })
 }
