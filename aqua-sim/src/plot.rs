@@ -142,21 +142,34 @@ pub fn line_chart(
                     PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+        finish(&mut chart, &root, &err)?;
     }
     Ok(Picture {
         path: path.to_path_buf(),
         title: title.to_string(),
         series,
     })
+}
+
+/// Draws the legend (top right) and writes the picture.
+fn finish<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    root: &DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>,
+    err: &dyn Fn(String) -> SimError,
+) -> Result<()>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+{
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", 16))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    root.present().map_err(|e| err(e.to_string()))
 }
 
 /// A run folder's `summary.csv` read back: column names and rows.
@@ -435,15 +448,7 @@ pub fn plot_study(study: &Study, path: &Path) -> Result<Picture> {
             .map_err(|e| err(e.to_string()))?
             .label("run (green: recommended)")
             .legend(|(x, y)| Circle::new((x + 12, y), 6, BLUE.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+        finish(&mut chart, &root, &err)?;
     }
     Ok(Picture {
         path: path.to_path_buf(),

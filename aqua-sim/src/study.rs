@@ -775,12 +775,7 @@ pub fn runs_csv(study: &Study) -> String {
         }
         row.push((study.recommended == Some(r.index)).to_string());
         row.push(r.reason.clone().unwrap_or_default());
-        out += &row
-            .iter()
-            .map(|c| csv_field(c))
-            .collect::<Vec<_>>()
-            .join(",");
-        out += "\n";
+        out += &csv_line(&row);
     }
     out
 }
@@ -805,14 +800,20 @@ pub fn estimates_csv(study: &Study) -> String {
                 .iter()
                 .map(|p| p.map(|p| format!("{p:.4}")).unwrap_or_default()),
         );
-        out += &row
-            .iter()
-            .map(|c| csv_field(c))
-            .collect::<Vec<_>>()
-            .join(",");
-        out += "\n";
+        out += &csv_line(&row);
     }
     out
+}
+
+/// One CSV line (with its line break) of the fields, each quoted when it needs it.
+pub fn csv_line(fields: &[String]) -> String {
+    let mut line = fields
+        .iter()
+        .map(|f| csv_field(f))
+        .collect::<Vec<_>>()
+        .join(",");
+    line.push('\n');
+    line
 }
 
 /// A CSV field, quoted when it holds a comma, a quote or a line break.

@@ -26,7 +26,7 @@
 use crate::error::{Result, SimError};
 use crate::overrides::{Override, check_path_syntax};
 use crate::plot::SummaryTable;
-use crate::study::{csv_field, value_text};
+use crate::study::{csv_line, value_text};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -470,12 +470,7 @@ impl Collection {
             }
         }
         head.push("error".into());
-        let mut out = head
-            .iter()
-            .map(|h| csv_field(h))
-            .collect::<Vec<_>>()
-            .join(",")
-            + "\n";
+        let mut out = csv_line(&head);
         for r in &self.runs {
             let mut row = vec![r.folder.clone(), r.name.clone()];
             for p in &self.parameters {
@@ -496,12 +491,7 @@ impl Collection {
                 }
             }
             row.push(r.error.clone().unwrap_or_default());
-            out += &row
-                .iter()
-                .map(|f| csv_field(f))
-                .collect::<Vec<_>>()
-                .join(",");
-            out += "\n";
+            out += &csv_line(&row);
         }
         out
     }
