@@ -24,6 +24,8 @@ pub(crate) struct CableEval {
     pub c: [[f64; 3]; 3],
     /// Set when the element is degenerate (l < 1e-9·L0) or non-finite.
     pub bad: bool,
+    /// Unit vector from node a to node b.
+    pub force_b_dir: [f64; 3],
 }
 
 /// Evaluates element `e` with node positions/velocities. `damping` enables axial damping
@@ -52,6 +54,7 @@ pub(crate) fn evaluate(
         return out;
     }
     let u = [dx[0] / l, dx[1] / l, dx[2] / l];
+    out.force_b_dir = u;
     let eps = (l - e.l0) / e.l0;
     let s = if eps > 0.0 { 1.0 } else { e.rc };
     let ca = if damping { e.ca + extra_ca } else { 0.0 };
@@ -92,6 +95,65 @@ pub(crate) fn evaluate(
 
 /// Strain energy ½·s·EA·ε²·L0 [J].
 #[inline]
+/// Strain energy W(l) [J] of element `e` at length l.
+fn energy_at_length(e: &Cable, l: f64) -> f64 {
+    strain_energy(e, (l - e.l0) / e.l0)
+}
+
+/// Replaces the elastic part of the axial force of `out` (evaluated at the midpoint of a
+/// step, length l_m, direction u_m) by the discrete gradient of the strain energy between the
+/// step's start length l0 and end vector d1 (length l1, direction u1)
+/// (docs/theory/fem.md#energy-consistent-midpoint):
+///
+/// ```text
+/// T_alg = 2·l_m·(W(l1) − W(l0)) / (l1² − l0²)
+/// ```
+///
+/// so that the work of the element's forces over the step, T_alg/l_m·d_m·Δd = T_alg·Δ(l²)/(2·l_m),
+/// equals W(l1) − W(l0) exactly. The tangent `k` becomes 2·∂f_b/∂x1_b (the midpoint rule
+/// assembles ½·k): u_m ⊗ (2·∂T_alg/∂l1·u1 + T_alg/l_m·u_m) + (T/l_m)(I − u_m⊗u_m), with
+/// ∂T_alg/∂l1 = (2·l_m/Δq)·(T(l1) − l1·T_alg/l_m), Δq = l1² − l0². The damping part stays the
+/// midpoint's.
+#[inline]
+pub(crate) fn use_secant_tension(e: &Cable, l0: f64, d1: [f64; 3], out: &mut CableEval) {
+    if out.bad {
+        return;
+    }
+    let l1 = (d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]).sqrt();
+    if !(l1 > 1e-9 * e.l0) {
+        return;
+    }
+    let lm = out.length;
+    let u = out.force_b_dir;
+    let u1 = [d1[0] / l1, d1[1] / l1, d1[2] / l1];
+    let tension_at = |l: f64| {
+        let eps = (l - e.l0) / e.l0;
+        let s = if eps > 0.0 { 1.0 } else { e.rc };
+        s * e.ea * eps
+    };
+    let dq = l1 * l1 - l0 * l0;
+    let (t_alg, dt_dl1) = if dq.abs() > 1e-8 * lm * lm {
+        let t = 2.0 * lm * (energy_at_length(e, l1) - energy_at_length(e, l0)) / dq;
+        (t, 2.0 * lm / dq * (tension_at(l1) - l1 * t / lm))
+    } else {
+        // The limit: W'(l̄)·l_m/l̄ at l̄² = (l0² + l1²)/2, l̄ moving by ½·dl1.
+        let lb = (0.5 * (l0 * l0 + l1 * l1)).sqrt();
+        let s = if lb > e.l0 { 1.0 } else { e.rc };
+        (tension_at(lb) * lm / lb, 0.5 * s * e.ea / e.l0 * lm / lb)
+    };
+    let km = out.switch * e.ea / e.l0;
+    let d = t_alg - out.switch * e.ea * out.strain;
+    out.tension += d;
+    for i in 0..3 {
+        out.force_b[i] += d * u[i];
+        for j in 0..3 {
+            let p = if i == j { 1.0 } else { 0.0 } - u[i] * u[j];
+            out.k[i][j] +=
+                -km * u[i] * u[j] + u[i] * (2.0 * dt_dl1 * u1[j] + t_alg / lm * u[j]) + d / lm * p;
+        }
+    }
+}
+
 pub(crate) fn strain_energy(e: &Cable, strain: f64) -> f64 {
     let s = if strain > 0.0 { 1.0 } else { e.rc };
     0.5 * s * e.ea * strain * strain * e.l0

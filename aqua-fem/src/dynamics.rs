@@ -50,6 +50,12 @@ pub struct DynamicSettings {
     /// (default) = full Newton, a factorisation every iteration.
     #[serde(default = "one")]
     pub reuse_factor: usize,
+    /// The energy-consistent implicit midpoint rule instead of HHT-α (α is then unused):
+    /// cable forces are the discrete gradient of the strain energy over the step, so an
+    /// undamped structure keeps its energy exactly whatever the step
+    /// (docs/theory/fem.md#energy-consistent-midpoint). Default false.
+    #[serde(default)]
+    pub midpoint: bool,
 }
 
 fn one() -> usize {
@@ -72,6 +78,7 @@ impl DynamicSettings {
             max_strain: 1.0,
             fd_position_jacobian: false,
             reuse_factor: 1,
+            midpoint: false,
         }
     }
 
@@ -231,6 +238,12 @@ pub struct DynamicSolver<'m> {
     control: StepControl,
     /// Kinetic energy of the free DOFs at the current state.
     kinetic_free: f64,
+    /// Midpoint rule: the state the equations are evaluated at.
+    xm: Vec<[f64; 3]>,
+    vm: Vec<[f64; 3]>,
+    am: Vec<[f64; 3]>,
+    /// Storage of the step's end positions for the discrete gradient, between evaluations.
+    secant_buf: Option<crate::system::StepEnds>,
 }
 
 /// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
@@ -403,6 +416,10 @@ impl<'m> DynamicSolver<'m> {
             trial: Outputs::new(model),
             control: StepControl::default(),
             kinetic_free: 0.0,
+            xm: vec![[0.0; 3]; n],
+            vm: vec![[0.0; 3]; n],
+            am: vec![[0.0; 3]; n],
+            secant_buf: None,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -659,7 +676,9 @@ impl<'m> DynamicSolver<'m> {
                 target = target.min(k * oi);
             }
             let mut landed = false;
-            if t + h >= target - 1e-9 * self.st.dt {
+            // Land on the target when within 1e-6·dt of it: a remaining sliver of round-off
+            // size would be a step whose (x1 − x_n)/h is all round-off.
+            if t + h >= target - 1e-6 * self.st.dt {
                 h = target - t;
                 landed = true;
             }
@@ -770,13 +789,27 @@ impl<'m> DynamicSolver<'m> {
             }
         }
         model.apply_constraints(t1, 1.0, &mut self.x1, &mut self.v1, &mut self.a1);
-        let coef = Coef {
-            m: 1.0 / (beta * h * h),
-            k: 1.0 - alpha,
-            c: (1.0 - alpha) * gamma / (beta * h),
+        let midpoint = self.st.midpoint;
+        // ∂r/∂x_{n+1} = m·M + k·K + c·C (HHT: Newmark; midpoint: a_m = (v1 − v_n)/h,
+        // x_m = (x_n + x1)/2, v_m = (v_n + v1)/2 with v1 = 2(x1 − x_n)/h − v_n).
+        let (coef, t_eval, wq) = if midpoint {
+            let c = Coef {
+                m: 2.0 / (h * h),
+                k: 0.5,
+                c: 1.0 / h,
+            };
+            (c, self.state.t + 0.5 * h, 1.0)
+        } else {
+            let c = Coef {
+                m: 1.0 / (beta * h * h),
+                k: 1.0 - alpha,
+                c: (1.0 - alpha) * gamma / (beta * h),
+            };
+            (c, t1, 1.0 - alpha)
         };
-        let o = self.opts(Some(coef), t1);
-        let o_res = self.opts(None, t1);
+        let wprev = 1.0 - wq;
+        let o = self.opts(Some(coef), t_eval);
+        let o_res = self.opts(None, t_eval);
         let reuse = self.st.reuse_factor.max(1);
         if self.lu_h != h {
             self.lu_valid = false;
@@ -792,31 +825,30 @@ impl<'m> DynamicSolver<'m> {
             history: hist.clone(),
         };
         for it in 0..self.st.max_iter {
-            // Newmark kinematics on free DOFs.
-            for &gd in &self.sys.dof_of_free {
-                let (i, k) = (gd / 3, gd % 3);
-                let (xn, vn, an) = (self.state.x[i][k], self.state.v[i][k], self.state.a[i][k]);
-                let a = (self.x1[i][k] - xn - h * vn) / (beta * h * h)
-                    - (1.0 / (2.0 * beta) - 1.0) * an;
-                self.a1[i][k] = a;
-                self.v1[i][k] = vn + h * ((1.0 - gamma) * an + gamma * a);
+            if midpoint {
+                self.midpoint_kinematics(h);
+            } else {
+                // Newmark kinematics on free DOFs.
+                for &gd in &self.sys.dof_of_free {
+                    let (i, k) = (gd / 3, gd % 3);
+                    let (xn, vn, an) = (self.state.x[i][k], self.state.v[i][k], self.state.a[i][k]);
+                    let a = (self.x1[i][k] - xn - h * vn) / (beta * h * h)
+                        - (1.0 / (2.0 * beta) - 1.0) * an;
+                    self.a1[i][k] = a;
+                    self.v1[i][k] = vn + h * ((1.0 - gamma) * an + gamma * a);
+                }
             }
             // Modified Newton: keep the stored factorisation while it is fresh enough; then
             // the Jacobian need not be assembled.
             let mut refactor = !(reuse > 1 && self.lu_valid && self.lu_uses < reuse);
             let oe = if refactor { &o } else { &o_res };
-            if let Err(e) = self
-                .sys
-                .evaluate(model, provider, &self.x1, &self.v1, &self.a1, oe)
-            {
+            if let Err(e) = self.evaluate_at_step(provider, oe) {
                 return Err(fail(e.to_string(), &hist));
             }
             let mut rn = 0.0;
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
                 let (i, k) = (gd / 3, gd % 3);
-                let r = self.sys.ma[i][k]
-                    + (1.0 - alpha) * self.sys.q[i][k]
-                    + alpha * self.q_prev[i][k];
+                let r = self.sys.ma[i][k] + wq * self.sys.q[i][k] + wprev * self.q_prev[i][k];
                 self.r[f] = r;
                 rn += r * r;
             }
@@ -846,15 +878,12 @@ impl<'m> DynamicSolver<'m> {
             };
             if it > 0 && rn <= tol && dx_prev <= xtol {
                 strain_check(&self.sys, &hist)?;
-                return Ok((it, hist));
+                return self.finish_attempt(provider, t1, it, hist);
             }
             if !refactor && it > 0 && rn > 0.5 * rn_prev {
                 // Contraction below 2×: re-form J at this iterate.
                 refactor = true;
-                if let Err(e) = self
-                    .sys
-                    .evaluate(model, provider, &self.x1, &self.v1, &self.a1, &o)
-                {
+                if let Err(e) = self.evaluate_at_step(provider, &o) {
                     return Err(fail(e.to_string(), &hist));
                 }
             }
@@ -879,7 +908,7 @@ impl<'m> DynamicSolver<'m> {
             let dinf = self.dx.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             if rn <= tol && dinf <= xtol {
                 strain_check(&self.sys, &hist)?;
-                return Ok((it + 1, hist));
+                return self.finish_attempt(provider, t1, it + 1, hist);
             }
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
                 self.x1[gd / 3][gd % 3] += self.dx[f];
@@ -890,6 +919,75 @@ impl<'m> DynamicSolver<'m> {
             format!("no convergence in {} Newton iterations", self.st.max_iter),
             &hist,
         ))
+    }
+
+    /// Midpoint rule: v1 on the free DOFs from x1, and the midpoint state (x_m, v_m, a_m) on
+    /// all DOFs (the constrained ones follow their motion at t_n and t_{n+1}).
+    fn midpoint_kinematics(&mut self, h: f64) {
+        for &gd in &self.sys.dof_of_free {
+            let (i, k) = (gd / 3, gd % 3);
+            self.v1[i][k] = 2.0 * (self.x1[i][k] - self.state.x[i][k]) / h - self.state.v[i][k];
+        }
+        for i in 0..self.model.n_nodes() {
+            for k in 0..3 {
+                let (x0, v0) = (self.state.x[i][k], self.state.v[i][k]);
+                self.xm[i][k] = 0.5 * (x0 + self.x1[i][k]);
+                self.vm[i][k] = 0.5 * (v0 + self.v1[i][k]);
+                self.am[i][k] = (self.v1[i][k] - v0) / h;
+            }
+        }
+    }
+
+    /// Evaluates the step's equations: at x1 for HHT-α, at the midpoint with discrete-gradient
+    /// cable forces between x_n and x1 for the midpoint rule.
+    fn evaluate_at_step<P: LoadProvider + ?Sized>(
+        &mut self,
+        provider: &mut P,
+        o: &EvalOptions,
+    ) -> Result<()> {
+        if !self.st.midpoint {
+            return self
+                .sys
+                .evaluate(self.model, provider, &self.x1, &self.v1, &self.a1, o);
+        }
+        let mut ends = self.secant_buf.take().unwrap_or_default();
+        ends.0.clone_from(&self.state.x);
+        ends.1.clone_from(&self.x1);
+        self.sys.secant = Some(ends);
+        let r = self
+            .sys
+            .evaluate(self.model, provider, &self.xm, &self.vm, &self.am, o);
+        // Later evaluations (outputs, guards) are of states, not of steps.
+        self.secant_buf = self.sys.secant.take();
+        r
+    }
+
+    /// A converged attempt: for the midpoint rule, the end state's acceleration (the
+    /// midpoint's, which the next predictor uses) and one evaluation at the end state, so that
+    /// outputs, guards and the energy balance see x_{n+1}.
+    fn finish_attempt<P: LoadProvider + ?Sized>(
+        &mut self,
+        provider: &mut P,
+        t1: f64,
+        iterations: usize,
+        hist: Vec<f64>,
+    ) -> std::result::Result<(usize, Vec<f64>), Attempt> {
+        if self.st.midpoint {
+            for &gd in &self.sys.dof_of_free {
+                self.a1[gd / 3][gd % 3] = self.am[gd / 3][gd % 3];
+            }
+            let o = self.opts(None, t1);
+            if let Err(e) = self
+                .sys
+                .evaluate(self.model, provider, &self.x1, &self.v1, &self.a1, &o)
+            {
+                return Err(Attempt {
+                    reason: e.to_string(),
+                    history: hist,
+                });
+            }
+        }
+        Ok((iterations, hist))
     }
 
     /// F_ref = max(‖f_ext‖₂, ‖R‖₂, ‖M·a‖₂, floor) from the last evaluation.

@@ -57,6 +57,9 @@ impl std::fmt::Debug for LinearSolver {
     }
 }
 
+/// The positions at the start and end of a step.
+pub(crate) type StepEnds = (Vec<[f64; 3]>, Vec<[f64; 3]>);
+
 #[derive(Debug)]
 pub(crate) struct System {
     pub n_nodes: usize,
@@ -97,6 +100,10 @@ pub(crate) struct System {
     solver: Option<LinearSolver>,
     pub n_factorisations: usize,
     load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
+    /// When set, the cables' elastic force is the discrete gradient between these start and
+    /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
+    /// in the configuration passed to `evaluate` (the midpoint).
+    pub secant: Option<StepEnds>,
 }
 
 fn pos_in(col_ptr: &[usize], row_idx: &[usize], row: usize, col: usize) -> usize {
@@ -272,6 +279,7 @@ impl System {
             solver: None,
             n_factorisations: 0,
             load_scratch: Default::default(),
+            secant: None,
         })
     }
 
@@ -311,6 +319,7 @@ impl System {
         let damping = o.dynamic;
         let a_k = if o.dynamic { o.rayleigh.1 } else { 0.0 };
         let clamp = o.clamp_geometric;
+        let secant = self.secant.as_ref();
         let kernel = |(i, out): (usize, &mut CableEval)| {
             let e = &elements[i];
             *out = cable::evaluate(
@@ -323,6 +332,10 @@ impl System {
                 a_k * e.ea,
                 clamp,
             );
+            if let Some((x0, x1)) = secant {
+                let l0 = norm(sub(x0[e.b], x0[e.a]));
+                cable::use_secant_tension(e, l0, sub(x1[e.b], x1[e.a]), out);
+            }
         };
         if elements.len() >= PAR_THRESHOLD {
             self.cable.par_iter_mut().enumerate().for_each(kernel);

@@ -347,6 +347,9 @@ pub enum Scheme {
     /// Implicit HHT-α.
     #[default]
     Hht,
+    /// Implicit midpoint with energy-consistent cable forces (aqua-fem's
+    /// `DynamicSettings::midpoint`).
+    Midpoint,
     /// Explicit lumped mass-spring, symplectic Euler.
     SemiImplicitEuler,
     /// Explicit lumped mass-spring, RK4.
@@ -357,7 +360,7 @@ impl Scheme {
     /// The explicit scheme, or `None` for HHT-α.
     pub fn explicit(self) -> Option<ExplicitScheme> {
         match self {
-            Scheme::Hht => None,
+            Scheme::Hht | Scheme::Midpoint => None,
             Scheme::SemiImplicitEuler => Some(ExplicitScheme::SemiImplicitEuler),
             Scheme::Rk4 => Some(ExplicitScheme::Rk4),
         }

@@ -95,6 +95,15 @@ fn a_released_slack_chain_stays_within_its_energy_bound() {
         None => assert_eq!(run_json(&out)["status"], "completed"),
         Some(e) => assert!(e.contains("dynamic step failed at t ="), "{e}"),
     }
+    // The energy-consistent midpoint rule completes the same drop within the same bound.
+    let text = text.replace("alpha = 0.05\n", "scheme = \"midpoint\"\n");
+    let (out, err) = run(&d, "drop-midpoint", &text);
+    assert!(err.is_none(), "{err:?}");
+    let tmax = max_of(&out, "Tmax_");
+    assert!(
+        tmax < 2000.0,
+        "midpoint: largest tension {tmax} N (weight 98 N)"
+    );
 }
 
 /// A 1 m × 1 m net panel hanging from its top edge with a 5 N bottom weight, in still water,
