@@ -196,6 +196,7 @@ fn run_json(
         "resolved": {
             "mesh": built.mesh.summary(),
             "sea": &built.sea_summary,
+            "scheme": &prep.scene.analysis.dynamic.scheme,
             "alpha": plan.alpha,
             "dt": plan.dt,
             "output_interval": plan.output_interval,
