@@ -246,6 +246,8 @@ pub struct DynamicSolver<'m> {
     secant_buf: Option<crate::system::StepEnds>,
     /// Positions where the integration started (for the error indicator's scale).
     x_start: Vec<[f64; 3]>,
+    /// The balance of the step the guard accepted (its outputs are in `trial`).
+    guarded: Option<Balance>,
 }
 
 /// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
@@ -443,6 +445,7 @@ impl<'m> DynamicSolver<'m> {
             am: vec![[0.0; 3]; n],
             secant_buf: None,
             x_start: Vec::new(),
+            guarded: None,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
@@ -607,17 +610,27 @@ impl<'m> DynamicSolver<'m> {
 
     /// Updates outputs and energies from the last evaluation (at the new state).
     fn accept_bookkeeping(&mut self, h: f64, first: bool) {
-        let model = self.model;
-        self.outputs.update(model, &self.sys, true);
-        let mut mv = std::mem::take(&mut self.mv);
-        // x1 holds x_n here (swapped in `step`).
-        let b = self.balance(
-            &self.x1,
-            &self.state.x,
-            &self.state.v,
-            &self.outputs,
-            &mut mv,
-        );
+        let b = match self.guarded.take() {
+            // The guard already formed the new state's outputs and balance.
+            Some(b) => {
+                std::mem::swap(&mut self.outputs, &mut self.trial);
+                b
+            }
+            None => {
+                self.outputs.update(self.model, &self.sys, true);
+                let mut mv = std::mem::take(&mut self.mv);
+                // x1 holds x_n here (swapped in `step`).
+                let b = self.balance(
+                    &self.x1,
+                    &self.state.x,
+                    &self.state.v,
+                    &self.outputs,
+                    &mut mv,
+                );
+                self.mv = mv;
+                b
+            }
+        };
         if !first {
             self.energies.external_work += b.external_work;
             self.energies.support_work += b.support_work;
@@ -630,7 +643,6 @@ impl<'m> DynamicSolver<'m> {
             + self.energies.support_work
             - (b.kinetic + b.strain - self.e0)
             - self.energies.damping_dissipation;
-        self.mv = mv;
         self.power_prev = b.power;
         self.q_prev.copy_from_slice(&self.sys.q);
         self.fext_prev.copy_from_slice(&self.sys.fext);
@@ -645,6 +657,7 @@ impl<'m> DynamicSolver<'m> {
     /// other, e.g. weight and tension, is exact only to O(Δt³) per DOF).
     fn guard(&mut self, h: f64) -> Option<String> {
         let model = self.model;
+        self.guarded = None;
         for (e, (el, c)) in model.elements().iter().zip(&self.sys.cable).enumerate() {
             let (a, b) = (el.a, el.b);
             let d0 = crate::system::sub(self.state.x[b], self.state.x[a]);
@@ -671,12 +684,15 @@ impl<'m> DynamicSolver<'m> {
             - b.external_work
             - b.support_work_static;
         let scale = e_old.max(e_new) + b.work_magnitude + self.f_floor * model.mean_length;
-        (created > ENERGY_GROWTH_TOL * scale).then(|| {
-            format!(
+        if created > ENERGY_GROWTH_TOL * scale {
+            return Some(format!(
                 "the step created energy ({created:.3e} J, {:.1} % of {scale:.3e} J)",
                 100.0 * created / scale
-            )
-        })
+            ));
+        }
+        // Accepted: the bookkeeping reuses these outputs and this balance.
+        self.guarded = Some(b);
+        None
     }
 
     /// Takes one accepted step (halving Δt on failure down to `dt_min`), landing on output
