@@ -2,25 +2,13 @@
 //! converged value is known in closed form (docs/theory/fem.md#test-oracles), failed runs as
 //! rows, and bad input as exit 2.
 
+mod common;
+
+use common::{aqua, scratch};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 const G: f64 = 9.80665;
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aqua-study-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn aqua(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_aqua"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn study_json(out: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap()
@@ -54,7 +42,7 @@ fn level_catenary_end_tension(l: f64, l0: f64, w: f64, ea: f64) -> f64 {
 
 #[test]
 fn segment_ladder_on_the_elastic_catenary_extrapolates_to_the_closed_form() {
-    let d = dir("catenary");
+    let d = scratch("study", "catenary");
     let (l, l0, w, ea) = (100.0, 105.0, 10.0, 1.0e5);
     let scene = d.join("catenary.toml");
     std::fs::write(
@@ -143,7 +131,7 @@ fn oscillator(d: &Path) -> (PathBuf, f64) {
 
 #[test]
 fn time_step_ladder_observes_second_order_for_hht_alpha_0() {
-    let d = dir("oscillator");
+    let d = scratch("study", "oscillator");
     let (scene, exact) = oscillator(&d);
     let out = d.join("out");
     let o = aqua(&[
@@ -173,7 +161,7 @@ fn time_step_ladder_observes_second_order_for_hht_alpha_0() {
 
 #[test]
 fn failed_runs_are_rows_and_the_recommendation_meets_the_tolerance() {
-    let d = dir("failed");
+    let d = scratch("study", "failed");
     let (scene, _) = oscillator(&d);
     let out = d.join("out");
     // dt = 5 s is longer than t_end: that run fails in validation, the others run.
@@ -215,7 +203,7 @@ fn failed_runs_are_rows_and_the_recommendation_meets_the_tolerance() {
 
 #[test]
 fn bad_ladders_and_paths_exit_2_naming_them() {
-    let d = dir("bad");
+    let d = scratch("study", "bad");
     let (scene, _) = oscillator(&d);
     let scene = scene.to_str().unwrap();
     let cases: &[(&[&str], &str)] = &[
@@ -242,7 +230,7 @@ fn bad_ladders_and_paths_exit_2_naming_them() {
 
 #[test]
 fn run_set_overrides_are_applied_and_recorded() {
-    let d = dir("set");
+    let d = scratch("study", "set");
     let (scene, _) = oscillator(&d);
     let out = d.join("run");
     let o = aqua(&[

@@ -3,22 +3,11 @@
 //! SLURM_ARRAY_TASK_ID set) give identical collected tables; a failing case does not stop the
 //! others; bad case files exit 2.
 
+mod common;
+
+use common::{aqua, scratch};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aqua-sweep-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn aqua(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_aqua"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::process::{Command, Stdio};
 
 /// A short surged chain and a case file: 2 currents × 3 periods, plus one case that fails
 /// validation (a time step longer than the run).
@@ -93,7 +82,7 @@ fn gnu_parallel() -> bool {
 
 #[test]
 fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
-    let d = dir("engines");
+    let d = scratch("sweep", "engines");
     let cases = write_cases(&d);
     let cases_s = cases.to_str().unwrap();
 
@@ -220,7 +209,7 @@ fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
 
 #[test]
 fn bad_case_files_exit_2_naming_the_problem() {
-    let d = dir("bad");
+    let d = scratch("sweep", "bad");
     write_cases(&d);
     let cases: &[(&str, &str)] = &[
         (
