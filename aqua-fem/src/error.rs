@@ -88,7 +88,7 @@ pub(crate) fn invalid(what: impl Into<String>, value: f64, valid: impl Into<Stri
     "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
          {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
          residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {history:?}. \
-         Hints: check supports and slack parts, raise `stabilisation`, or use more `load_steps`"
+         Hints: check supports and slack parts, use more `load_steps` or `max_iter`"
 )]
 pub struct StaticFailure {
     /// Load factor that could not be reached.

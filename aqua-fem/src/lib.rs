@@ -23,9 +23,10 @@
 //! * Water loads f_h(t, x, v) and their Jacobians −∂f_h/∂v (damping) and −∂f_h/∂x (stiffness)
 //!   from the provider, finite differences element by element when a derivative is missing.
 //!
-//! **Statics** ([`solve_static`]): Newton on q(x, 0, t0) + ε_s·D·(x − x_ref) = 0 with load
-//! continuation s ∈ (0, 1], pseudo-viscous stabilisation, step cap and an optional
-//! backtracking line search (off by default); converged when ‖r‖₂ ≤ ε_r·F_ref and
+//! **Statics** ([`solve_static`]): q(x, 0, t0) = 0 by Levenberg–Marquardt Newton steps
+//! (J + μD)Δx = −r, D = Σ EA/L0 per node, accepted and μ adapted on the energy merit
+//! Π = Σ W_e + seabed energy − f_frozen·x (backtracking on it before μ rises), μ → 0 near the
+//! solution; load continuation only when the full load fails; converged when ‖r‖₂ ≤ ε_r·F_ref and
 //! ‖Δx‖∞ ≤ 1e-6·L_ref, or when ‖r‖₂ is at its round-off floor F_noise. Progress and stopping
 //! through [`solve_static_observed`].
 //!

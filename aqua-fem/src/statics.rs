@@ -1,7 +1,9 @@
-//! Static equilibrium: Newton with load continuation, pseudo-viscous stabilisation, an
-//! optional line search (off by default) and a round-off convergence floor
-//! (docs/theory/fem.md#static-solver).
+//! Static equilibrium: a Levenberg–Marquardt Newton method whose damping is steered by an
+//! energy merit (strain and seabed energy, other loads frozen at the iterate), a backtracking
+//! line search on that merit, load continuation only when a full-load solve fails, and a
+//! round-off convergence floor (docs/theory/fem.md#static-solver).
 
+use crate::cable;
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;
 use crate::model::Model;
@@ -14,20 +16,20 @@ use serde::{Deserialize, Serialize};
 pub struct StaticSettings {
     /// Relative force tolerance ε_r (‖r‖₂ ≤ ε_r·F_ref). Default 1e-6.
     pub tol: f64,
-    /// Newton iterations per increment. Default 30.
+    /// Newton iterations (factorisations) per load increment. Default 500.
     pub max_iter: usize,
-    /// Initial number of load increments (Δs0 = 1/load_steps). Default 4.
+    /// Initial number of load increments (Δs0 = 1/load_steps). Default 1: the full load at
+    /// once, halved only if that solve fails.
     pub load_steps: usize,
     /// Smallest load increment before failing. Default 1e-4.
     pub min_load_step: f64,
-    /// Pseudo-viscous stabilisation ε_s (0 disables). Default 1e-3.
+    /// Initial Levenberg–Marquardt damping μ0, relative to Σ EA/L0 at each node (0: start
+    /// undamped). Default 1e-3. μ then adapts; it does not change the answer.
     pub stabilisation: f64,
-    /// Backtracking line search on ‖r‖₂. Default false: the norm is dominated by stiff axial
-    /// residuals, and cutting steps on it tripled the iterations of the reference cage (6297
-    /// with, 2242 without, same equilibrium; docs/theory/fem.md#static-solver).
+    /// Backtracking along a rejected step on the energy merit before μ is raised. Default true
+    /// (the reference cage needs 130 iterations with it, 311 without;
+    /// docs/theory/fem.md#static-solver).
     pub line_search: bool,
-    /// Most pseudo-steps after full load. Default 2000.
-    pub max_pseudo_steps: usize,
     /// Time at which loads and prescribed offsets are evaluated [s]. Default 0.
     pub time: f64,
     /// Form missing water-load position derivatives by finite differences. Default true.
@@ -38,12 +40,11 @@ impl Default for StaticSettings {
     fn default() -> Self {
         Self {
             tol: 1e-6,
-            max_iter: 30,
-            load_steps: 4,
+            max_iter: 500,
+            load_steps: 1,
             min_load_step: 1e-4,
             stabilisation: 1e-3,
-            line_search: false,
-            max_pseudo_steps: 2000,
+            line_search: true,
             time: 0.0,
             fd_position_jacobian: true,
         }
@@ -87,8 +88,10 @@ pub struct StaticReport {
     pub rejected_increments: usize,
     /// Total Newton iterations (factorisations).
     pub iterations: usize,
-    /// Pseudo-steps after full load.
-    pub pseudo_steps: usize,
+    /// Iterations whose step the merit rejected (μ raised, refactorised).
+    pub rejected_steps: usize,
+    /// Steps accepted only after backtracking.
+    pub backtracked_steps: usize,
     /// ‖r‖/F_ref per iteration of the last Newton solve.
     pub last_residual_history: Vec<f64>,
     /// Final ‖r‖/F_ref.
@@ -98,7 +101,7 @@ pub struct StaticReport {
     pub noise_level: f64,
     /// Reference force F_ref [N].
     pub f_ref: f64,
-    /// ‖r‖/F_ref at every Newton iterate of every increment and pseudo-step, in order.
+    /// ‖r‖/F_ref at every Newton iterate of every increment, in order.
     pub residual_history: Vec<f64>,
     /// The observer stopped the solve: the state is the last accepted one, not an equilibrium.
     pub interrupted: bool,
@@ -111,8 +114,8 @@ pub struct StaticReport {
 pub struct StaticProgress {
     /// Load factor being solved for (1 = full load).
     pub load_factor: f64,
-    /// Pseudo-steps after full load so far.
-    pub pseudo_steps: usize,
+    /// Levenberg–Marquardt damping μ of the next step.
+    pub damping: f64,
     /// Newton iterations so far.
     pub iteration: usize,
     /// ‖r‖/F_ref at this iterate.
@@ -147,6 +150,16 @@ struct NewtonFail {
     stopped: bool,
 }
 
+/// Smallest and largest Levenberg–Marquardt damping μ.
+const MU_MIN: f64 = 1e-14;
+const MU_MAX: f64 = 1e6;
+/// μ after a rejection from μ = 0.
+const MU_RESTART: f64 = 1e-8;
+/// Backtracking halvings along a rejected step.
+const BACKTRACKS: usize = 8;
+/// A step is accepted when the merit falls by this fraction of the predicted decrease.
+const RHO_ACCEPT: f64 = 1e-4;
+
 struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     model: &'m Model,
     prov: &'p mut P,
@@ -154,8 +167,15 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     st: StaticSettings,
     x: Vec<[f64; 3]>,
     zero: Vec<[f64; 3]>,
-    x_ref: Vec<[f64; 3]>,
-    dstab: Vec<f64>,
+    /// Σ EA/L0 over each node's elements [N/m]: the damping matrix D.
+    d_node: Vec<f64>,
+    /// External force without the seabed on the free DOFs at the iterate (frozen in the
+    /// merit) [N].
+    f_frozen: Vec<f64>,
+    /// Element lengths at the iterate [m].
+    len_x: Vec<f64>,
+    /// Free residual at the iterate (kept while trial points overwrite `r`) [N].
+    r_x: Vec<f64>,
     r: Vec<f64>,
     dx: Vec<f64>,
     x_trial: Vec<[f64; 3]>,
@@ -166,7 +186,9 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     noise_buf: Vec<f64>,
     l_ref: f64,
     iterations: usize,
-    /// Progress reported so far (load factor, pseudo-steps).
+    rejected_steps: usize,
+    backtracked_steps: usize,
+    /// Progress reported so far (load factor, damping).
     progress: StaticProgress,
     history: Vec<f64>,
     observer: &'o mut dyn FnMut(&StaticProgress) -> StaticControl,
@@ -261,8 +283,10 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         st: settings.clone(),
         x: model.nodes().to_vec(),
         zero: vec![[0.0; 3]; n],
-        x_ref: model.nodes().to_vec(),
-        dstab: vec![0.0; n],
+        d_node: node_axial_stiffness(model),
+        f_frozen: vec![0.0; nf],
+        len_x: vec![0.0; model.elements().len()],
+        r_x: vec![0.0; nf],
         r: vec![0.0; nf],
         dx: vec![0.0; nf],
         x_trial: vec![[0.0; 3]; n],
@@ -272,9 +296,11 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         noise_buf: vec![0.0; n],
         l_ref: model.mean_length,
         iterations: 0,
+        rejected_steps: 0,
+        backtracked_steps: 0,
         progress: StaticProgress {
             load_factor: 0.0,
-            pseudo_steps: 0,
+            damping: settings.stabilisation,
             iteration: 0,
             relative_residual: f64::NAN,
         },
@@ -283,96 +309,57 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     };
     let mut report = StaticReport::default();
     let t = settings.time;
-    let eps0 = settings.stabilisation;
-    let mut eps = eps0;
+    let mut mu = settings.stabilisation;
     let mut s_acc = 0.0;
     let mut ds = 1.0 / settings.load_steps as f64;
     let mut x_acc = ctx.x.clone();
     loop {
-        let s = if s_acc >= 1.0 || s_acc + ds > 1.0 - 1e-12 {
+        let s = if s_acc + ds > 1.0 - 1e-12 {
             1.0
         } else {
             s_acc + ds
         };
         ctx.x.copy_from_slice(&x_acc);
         apply_constraints(model, t, s, &mut ctx.x);
-        ctx.x_ref.copy_from_slice(&x_acc);
-        ctx.update_stabilisation(eps);
         ctx.progress.load_factor = s;
-        ctx.progress.pseudo_steps = report.pseudo_steps;
-        let res = ctx.newton(s);
-        match res {
+        match ctx.levenberg_marquardt(s, &mut mu) {
             Ok((iters, hist)) => {
                 report.last_residual_history = hist;
-                let fs = ctx.stabilisation_force_norm();
+                report.increments += 1;
                 x_acc.copy_from_slice(&ctx.x);
-                if s_acc >= 1.0 {
-                    report.pseudo_steps += 1;
-                } else {
-                    report.increments += 1;
-                }
                 s_acc = s;
-                if s >= 1.0 && fs <= (settings.tol * ctx.f_ref).max(ctx.f_noise) {
+                if s >= 1.0 {
                     break;
                 }
-                if report.pseudo_steps >= settings.max_pseudo_steps {
-                    return Err(ctx.failure(
-                        1.0,
-                        0.0,
-                        NewtonFail {
-                            reason: format!(
-                                "stabilisation force {fs:.3e} N still above tolerance after {} \
-                                 pseudo-steps (a part of the structure may be unsupported or \
-                                 have no lateral stiffness)",
-                                settings.max_pseudo_steps
-                            ),
-                            history: vec![],
-                            stopped: false,
-                        },
-                    ));
-                }
-                if iters <= 5 {
-                    if s_acc < 1.0 {
-                        ds = (2.0 * ds).min(1.0 - s_acc);
-                    }
-                    // Easy step: trust the model more (pseudo-transient continuation).
-                    eps = (0.25 * eps).max(1e-12 * eps0);
+                if iters <= 10 {
+                    ds = (2.0 * ds).min(1.0 - s_acc);
                 }
             }
             Err(f) if f.stopped => {
                 report.interrupted = true;
                 ctx.x.copy_from_slice(&x_acc);
-                ctx.eval_at_x(s_acc, false)?;
+                ctx.eval(s_acc, false, false)?;
                 break;
             }
             Err(f) => {
                 report.rejected_increments += 1;
-                let give_up = if s_acc < 1.0 {
-                    ds *= 0.5;
-                    ds < settings.min_load_step
-                } else {
-                    eps0 == 0.0 || eps > 1e3 * eps0
-                };
-                if give_up {
+                ds *= 0.5;
+                if ds < settings.min_load_step {
                     return Err(ctx.failure(s, ds, f));
                 }
-                eps = if eps0 > 0.0 {
-                    (4.0 * eps).max(eps0)
-                } else {
-                    0.0
-                };
-                ctx.x.copy_from_slice(&x_acc);
-                ctx.eval_at_x(s_acc, false)?;
+                mu = mu.max(settings.stabilisation);
             }
         }
     }
     // Final evaluation for outputs at the equilibrium (or last accepted) state.
     let s_out = if report.interrupted { s_acc } else { 1.0 };
-    ctx.eval_at_x(s_out, false)?;
+    ctx.eval(s_out, false, false)?;
     let mut outputs = Outputs::new(model);
     outputs.update(model, &ctx.sys, false);
-    let rn = ctx.residual_norm(s_out);
+    let rn = ctx.residual(false);
     report.iterations = ctx.iterations;
+    report.rejected_steps = ctx.rejected_steps;
+    report.backtracked_steps = ctx.backtracked_steps;
     report.residual_history = std::mem::take(&mut ctx.history);
     report.f_ref = ctx.f_ref;
     report.relative_residual = rn / ctx.f_ref;
@@ -393,6 +380,16 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     })
 }
 
+/// Σ EA/L0 over the elements at each node [N/m].
+fn node_axial_stiffness(model: &Model) -> Vec<f64> {
+    let mut d = vec![0.0; model.n_nodes()];
+    for e in model.elements() {
+        d[e.a] += e.ea / e.l0;
+        d[e.b] += e.ea / e.l0;
+    }
+    d
+}
+
 fn apply_constraints(model: &Model, t: f64, s: f64, x: &mut [[f64; 3]]) {
     let n = x.len();
     let mut v = vec![[0.0; 3]; n];
@@ -401,6 +398,7 @@ fn apply_constraints(model: &Model, t: f64, s: f64, x: &mut [[f64; 3]]) {
 }
 
 impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
+    /// Evaluates forces at `self.x` or `self.x_trial`, with the static tangent if `jac`.
     fn eval(&mut self, s: f64, trial: bool, jac: bool) -> Result<()> {
         let o = EvalOptions {
             t: self.st.time,
@@ -422,42 +420,12 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             .evaluate(self.model, &mut *self.prov, x, &self.zero, &self.zero, &o)
     }
 
-    fn eval_at_x(&mut self, s: f64, jac: bool) -> Result<()> {
-        self.eval(s, false, jac)
-    }
-
-    /// D_i = Σ s_e·EA/L0 over the node's elements, from the last evaluation.
-    /// D_i = ε·Σ EA/L0 over the node's elements. The axial stiffness is used whether the
-    /// element is taut or slack: s·EA/L0 would vanish on slack parts, exactly where the
-    /// pseudo-viscous term is needed.
-    fn update_stabilisation(&mut self, eps: f64) {
-        self.dstab.iter_mut().for_each(|d| *d = 0.0);
-        for e in self.model.elements() {
-            let k = eps * e.ea / e.l0;
-            self.dstab[e.a] += k;
-            self.dstab[e.b] += k;
-        }
-    }
-
-    fn stabilisation_force_norm(&self) -> f64 {
-        let mut s = 0.0;
-        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-            let _ = f;
-            let i = gd / 3;
-            let d = self.dstab[i] * (self.x[i][gd % 3] - self.x_ref[i][gd % 3]);
-            s += d * d;
-        }
-        s.sqrt()
-    }
-
-    /// Fills `self.r` (free residual incl. stabilisation, at `x_or_trial`) and updates F_ref;
-    /// returns ‖r‖₂.
+    /// Fills `self.r` (free residual at `self.x` or `self.x_trial`, from the last evaluation)
+    /// and updates F_ref; returns ‖r‖₂.
     fn residual(&mut self, trial: bool) -> f64 {
-        let x = if trial { &self.x_trial } else { &self.x };
         let mut rn = 0.0;
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-            let (i, k) = (gd / 3, gd % 3);
-            let r = self.sys.q[i][k] + self.dstab[i] * (x[i][k] - self.x_ref[i][k]);
+            let r = self.sys.q[gd / 3][gd % 3];
             self.r[f] = r;
             rn += r * r;
         }
@@ -500,12 +468,158 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         2.0 * s2.sqrt()
     }
 
-    fn residual_norm(&mut self, _s: f64) -> f64 {
-        self.residual(false)
+    /// Stores what the merit and a rejected step need at the iterate, from the last
+    /// evaluation and residual at `self.x`: element lengths, the external force without the
+    /// seabed, and the residual.
+    fn freeze(&mut self) {
+        for (l, c) in self.len_x.iter_mut().zip(&self.sys.cable) {
+            *l = c.length;
+        }
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            let (i, k) = (gd / 3, gd % 3);
+            self.f_frozen[f] = self.sys.fext[i][k] - self.sys.fbed[i][k];
+        }
+        self.r_x.copy_from_slice(&self.r);
     }
 
-    /// Newton on g + f_s at load factor s from `self.x`. Returns (iterations, history).
-    fn newton(&mut self, s: f64) -> std::result::Result<(usize, Vec<f64>), NewtonFail> {
+    /// Decrease of the merit from `self.x` to `self.x_trial` (evaluated): strain and seabed
+    /// energy exactly, the other external forces frozen at `self.x`, so that its gradient at
+    /// `self.x` is the residual (docs/theory/fem.md#static-solver). Positive when the trial
+    /// is better.
+    fn merit_decrease(&self) -> f64 {
+        let mut dw = 0.0;
+        for ((e, c), &l_x) in self
+            .model
+            .elements()
+            .iter()
+            .zip(&self.sys.cable)
+            .zip(&self.len_x)
+        {
+            dw += cable::strain_energy(e, (c.length - e.l0) / e.l0)
+                - cable::strain_energy(e, (l_x - e.l0) / e.l0);
+        }
+        if let Some(bed) = self.model.env.seabed {
+            let zs = -bed.depth;
+            for i in 0..self.model.n_nodes() {
+                let k = bed.stiffness * self.model.bed_coef[i] + self.model.bed_point[i];
+                if k > 0.0 {
+                    let d1 = (zs - self.x_trial[i][2]).max(0.0);
+                    let d0 = (zs - self.x[i][2]).max(0.0);
+                    dw += 0.5 * k * (d1 - d0) * (d1 + d0);
+                }
+            }
+        }
+        let mut work = 0.0;
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            let (i, k) = (gd / 3, gd % 3);
+            work += self.f_frozen[f] * (self.x_trial[i][k] - self.x[i][k]);
+        }
+        work - dw
+    }
+
+    /// Reports the iterate to the observer and records ‖r‖/F_ref; `Err` when told to stop.
+    fn observe(
+        &mut self,
+        rn: f64,
+        mu: f64,
+        hist: &mut Vec<f64>,
+    ) -> std::result::Result<(), NewtonFail> {
+        hist.push(rn / self.f_ref);
+        self.history.push(rn / self.f_ref);
+        self.progress.iteration = self.iterations;
+        self.progress.relative_residual = rn / self.f_ref;
+        self.progress.damping = mu;
+        if (self.observer)(&self.progress) == StaticControl::Stop {
+            return Err(NewtonFail {
+                reason: "interrupted".into(),
+                history: hist.clone(),
+                stopped: true,
+            });
+        }
+        Ok(())
+    }
+
+    /// Solves (J + μD)Δx = −r at the iterate into `self.dx`, raising the μ on the diagonal
+    /// from `mu_in`. Returns (r·Δx, ΔxᵀJΔx, step scale) or `None` if the matrix is singular.
+    fn damped_step(&mut self, mu: f64, mu_in: f64) -> Option<(f64, f64, f64)> {
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            let p = self.sys.diag_pos[f];
+            self.sys.values[p] += (mu - mu_in) * self.d_node[gd / 3];
+        }
+        self.iterations += 1;
+        if self.sys.factorize().is_err() {
+            return None;
+        }
+        for (d, r) in self.dx.iter_mut().zip(&self.r_x) {
+            *d = -r;
+        }
+        if self.sys.solve(&mut self.dx).is_err() || self.dx.iter().any(|d| !d.is_finite()) {
+            return None;
+        }
+        let mut a = 0.0;
+        let mut ddd = 0.0;
+        let mut dmax: f64 = 0.0;
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            a += self.r_x[f] * self.dx[f];
+            ddd += self.d_node[gd / 3] * self.dx[f] * self.dx[f];
+            dmax = dmax.max(self.dx[f].abs());
+        }
+        // (J + μD)Δx = −r ⇒ ΔxᵀJΔx = −r·Δx − μ·ΔxᵀDΔx. Step cap: no DOF moves more than L_ref.
+        let sc = if dmax > self.l_ref {
+            self.l_ref / dmax
+        } else {
+            1.0
+        };
+        Some((a, -a - mu * ddd, sc))
+    }
+
+    /// Tries x + λ·Δx for λ = 1, ½, ¼, … (only λ = 1 without `line_search`). Accepts the first
+    /// point whose merit decrease is at least `RHO_ACCEPT` of the quadratic model's, or whose
+    /// residual fell tenfold. Returns the ratio to steer μ by (½ after backtracking: keep μ),
+    /// with `self.x_trial`, `self.r` evaluated there; `None` if no point was accepted.
+    fn try_step(&mut self, s: f64, rn: f64, (a, b, sc): (f64, f64, f64)) -> Option<f64> {
+        let tries = if self.st.line_search {
+            BACKTRACKS + 1
+        } else {
+            1
+        };
+        let mut lam = sc;
+        for k in 0..tries {
+            self.x_trial.copy_from_slice(&self.x);
+            for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+                self.x_trial[gd / 3][gd % 3] += lam * self.dx[f];
+            }
+            if self.eval(s, true, false).is_ok() {
+                let rt = self.residual(true);
+                let pred = -lam * a - 0.5 * lam * lam * b;
+                let rho = self.merit_decrease() / pred;
+                if rt.is_finite() && ((pred > 0.0 && rho > RHO_ACCEPT) || rt <= 0.1 * rn) {
+                    if k > 0 {
+                        self.backtracked_steps += 1;
+                        return Some(0.5);
+                    }
+                    return Some(if pred > 0.0 && rho.is_finite() {
+                        rho
+                    } else {
+                        1.0
+                    });
+                }
+            }
+            lam *= 0.5;
+        }
+        None
+    }
+
+    /// Levenberg–Marquardt Newton at load factor s from `self.x` (docs/theory/fem.md#static-solver):
+    /// (J + μD)Δx = −r with D = Σ EA/L0 per node; a step is accepted on the energy merit,
+    /// μ follows Nielsen's rule (μ·max(⅓, 1 − (2ρ − 1)³) after success, ×ν, ν doubling, after
+    /// a rejection), so μ → 0 and the steps become Newton's near the solution. Returns
+    /// (iterations, ‖r‖/F_ref history).
+    fn levenberg_marquardt(
+        &mut self,
+        s: f64,
+        mu: &mut f64,
+    ) -> std::result::Result<(usize, Vec<f64>), NewtonFail> {
         let mut hist = Vec::new();
         let fail = |reason: String, hist: &Vec<f64>| NewtonFail {
             reason,
@@ -516,129 +630,60 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             return Err(fail(e.to_string(), &hist));
         }
         let xtol = 1e-6 * self.l_ref;
-        let mut dx_prev = f64::INFINITY;
+        let start = self.iterations;
+        let mut dx_last = f64::INFINITY;
         let mut rn = self.residual(false);
-        for it in 0..self.st.max_iter {
-            hist.push(rn / self.f_ref);
-            self.history.push(rn / self.f_ref);
-            self.progress.iteration = self.iterations + it;
-            self.progress.relative_residual = rn / self.f_ref;
-            if (self.observer)(&self.progress) == StaticControl::Stop {
-                self.iterations += it;
-                return Err(NewtonFail {
-                    reason: "interrupted".into(),
-                    history: hist,
-                    stopped: true,
-                });
-            }
+        loop {
+            self.observe(rn, *mu, &mut hist)?;
             if !rn.is_finite() {
                 return Err(fail("non-finite residual".into(), &hist));
             }
             let tol = self.st.tol * self.f_ref;
-            if it > 0 && ((rn <= tol && dx_prev <= xtol) || rn <= self.f_noise) {
-                self.iterations += it;
-                return Ok((it, hist));
+            if (rn <= tol && dx_last <= xtol) || rn <= self.f_noise {
+                return Ok((self.iterations - start, hist));
             }
-            // J = K + D_stab.
-            for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-                let p = self.sys.diag_pos[f];
-                self.sys.values[p] += self.dstab[gd / 3];
-            }
-            if let Err(e) = self.sys.factorize() {
-                return Err(fail(e.to_string(), &hist));
-            }
-            for f in 0..self.r.len() {
-                self.dx[f] = -self.r[f];
-            }
-            if let Err(e) = self.sys.solve(&mut self.dx) {
-                return Err(fail(e.to_string(), &hist));
-            }
-            // Step cap: max nodal |Δx| ≤ L_ref.
-            let mut dmax: f64 = 0.0;
-            let mut nodal = 0.0;
-            let mut last_node = usize::MAX;
-            for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-                if gd / 3 != last_node {
-                    dmax = dmax.max(nodal);
-                    nodal = 0.0;
-                    last_node = gd / 3;
-                }
-                nodal += self.dx[f] * self.dx[f];
-            }
-            let dmax = dmax.max(nodal).sqrt();
-            if dmax > self.l_ref {
-                let sc = self.l_ref / dmax;
-                self.dx.iter_mut().for_each(|d| *d *= sc);
-            }
-            let dinf = self.dx.iter().fold(0.0f64, |m, d| m.max(d.abs()));
-            if (rn <= tol && dinf <= xtol) || rn <= self.f_noise {
-                self.iterations += it + 1;
-                return Ok((it + 1, hist));
-            }
-            // Backtracking line search (Armijo 1e-4, halving to 1/32).
-            let mut lambda = 1.0;
-            let mut best: Option<(f64, f64)> = None;
-            let mut full_r: Option<f64> = None;
-            let mut accepted = false;
-            loop {
-                self.x_trial.copy_from_slice(&self.x);
-                for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-                    self.x_trial[gd / 3][gd % 3] += lambda * self.dx[f];
-                }
-                let ok = self.eval(s, true, true).is_ok();
-                let rt = if ok {
-                    self.residual(true)
-                } else {
-                    f64::INFINITY
-                };
-                if lambda == 1.0 && rt.is_finite() {
-                    full_r = Some(rt);
-                }
-                if rt.is_finite() && best.is_none_or(|(_, b)| rt < b) {
-                    best = Some((lambda, rt));
-                }
-                if rt <= (1.0 - 1e-4 * lambda) * rn || !self.st.line_search && rt.is_finite() {
-                    accepted = true;
-                    break;
-                }
-                lambda *= 0.5;
-                if lambda < 1.0 / 32.0 {
-                    break;
-                }
-            }
-            if !accepted {
-                // No Armijo point: accept the full (capped) step if it does not raise the
-                // residual much (slack parts falling into place), else the best point.
-                if let Some(r1) = full_r
-                    && r1 <= 2.0 * rn
-                {
-                    best = Some((1.0, r1));
-                }
-                let Some((lb, _)) = best else {
+            self.freeze();
+            let mut nu = 2.0;
+            let mut mu_in = 0.0;
+            let rho = loop {
+                if self.iterations - start >= self.st.max_iter {
                     return Err(fail(
-                        "no finite residual along the Newton direction (degenerate element)".into(),
+                        format!("no convergence in {} iterations", self.st.max_iter),
                         &hist,
                     ));
-                };
-                lambda = lb;
-                self.x_trial.copy_from_slice(&self.x);
-                for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
-                    self.x_trial[gd / 3][gd % 3] += lambda * self.dx[f];
                 }
-                if let Err(e) = self.eval(s, true, true) {
-                    return Err(fail(e.to_string(), &hist));
+                let step = self.damped_step(*mu, mu_in);
+                mu_in = *mu;
+                if let Some(step) = step
+                    && let Some(rho) = self.try_step(s, rn, step)
+                {
+                    break rho;
+                }
+                self.rejected_steps += 1;
+                *mu = (*mu * nu).max(MU_RESTART);
+                nu *= 2.0;
+                if *mu > MU_MAX {
+                    return Err(fail(
+                        "no step lowers the energy (damping exhausted): the structure may have \
+                         no equilibrium"
+                            .into(),
+                        &hist,
+                    ));
+                }
+            };
+            *mu = (*mu * (1.0f64 / 3.0).max(1.0 - (2.0 * rho.min(1.0) - 1.0).powi(3))).max(MU_MIN);
+            dx_last = 0.0;
+            for (xt, x) in self.x_trial.iter().zip(&self.x) {
+                for k in 0..3 {
+                    dx_last = dx_last.max((xt[k] - x[k]).abs());
                 }
             }
             std::mem::swap(&mut self.x, &mut self.x_trial);
+            if let Err(e) = self.eval(s, false, true) {
+                return Err(fail(e.to_string(), &hist));
+            }
             rn = self.residual(false);
-            dx_prev = lambda * dinf;
         }
-        hist.push(rn / self.f_ref);
-        self.iterations += self.st.max_iter;
-        Err(fail(
-            format!("no convergence in {} iterations", self.st.max_iter),
-            &hist,
-        ))
     }
 
     fn failure(&mut self, s: f64, ds: f64, f: NewtonFail) -> FemError {

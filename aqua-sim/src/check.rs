@@ -38,10 +38,10 @@ pub struct Cost {
     pub steps: usize,
     /// Output steps.
     pub output_steps: usize,
-    /// Estimated static solve [s]: the expected iterations (100 + 0.4 per free DOF; 1 when
-    /// nothing is free) at 3 units of Newton work each (factorisation + Jacobian).
+    /// Estimated static solve [s]: the expected iterations (100 + 0.012 per free DOF; 1 when
+    /// nothing is free) at 6 units of Newton work each.
     pub estimated_static_seconds: f64,
-    /// Estimated dynamics [s]: ~3 Newton iterations per nominal step.
+    /// Estimated dynamics [s]: ~4 Newton iterations per nominal step.
     pub estimated_dynamic_seconds: f64,
     /// Rough wall-time estimate [s], the sum of the two (measured constants of this code on a
     /// 2-core machine; within 3× of the bundled examples' measured wall times).
@@ -229,21 +229,23 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let per_iter = 1.2e-6 * built.model.elements().len() as f64
         + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64;
     let per_iter_dynamic = per_iter + 200e-9 * (ncomp * built.model.n_nodes()) as f64;
-    // Statics: the iterations grow with the free DOFs (reference cage 1215 for 3027, moored
-    // cage 1062 for 1143, mooring chain 245 for 237, 10 m cage 138 for ~250), each about four
-    // times this unit (factorisation and Jacobian every iteration).
+    // Statics (Levenberg–Marquardt, docs/theory/fem.md#static-solver): the iterations grow
+    // slowly with the free DOFs (10 m cage 67 for ~250, mooring chain 155 for 237, moored cage
+    // 242 for 1143, reference cage 130 for 3027, 1.25 m cage 244 for ~12 000), each about six
+    // of these units (factorisation, Jacobian with finite-difference water-load derivatives,
+    // trial evaluations).
     let static_iterations = if free == 0 {
         1.0
     } else {
-        100.0 + 0.4 * free as f64
+        100.0 + 0.012 * free as f64
     };
     let estimated_static = if kind != AnalysisKind::Dynamic {
-        4.0 * per_iter * static_iterations
+        6.0 * per_iter * static_iterations
     } else {
         0.0
     };
-    // Dynamics: ~3 Newton iterations per nominal step.
-    let estimated_dynamic = per_iter_dynamic * 3.0 * steps as f64;
+    // Dynamics: ~4 Newton iterations per nominal step (step halvings included).
+    let estimated_dynamic = per_iter_dynamic * 4.0 * steps as f64;
     Cost {
         dofs: free,
         cable_elements: built.model.elements().len(),

@@ -324,8 +324,6 @@ struct StaticKeys {
     stabilisation: f64,
     line_search: bool,
     #[serde(skip)]
-    max_pseudo_steps: usize,
-    #[serde(skip)]
     time: f64,
     #[serde(skip)]
     fd_position_jacobian: bool,

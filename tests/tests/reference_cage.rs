@@ -90,3 +90,37 @@ fn dynamic_run_from_rest_settles_on_the_static_equilibrium() {
         );
     }
 }
+
+/// `static_newton_iterations` and `static_residual_history` of a run.
+fn static_history(out: &std::path::Path) -> (u64, Vec<f64>) {
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    let hist = json["static_residual_history"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    (json["static_newton_iterations"].as_u64().unwrap(), hist)
+}
+
+#[test]
+fn static_solve_of_the_cage_is_newton_not_relaxation() {
+    // docs/theory/fem.md#static-solver: 67 iterations at 10 m elements and 79 at 5 m (the
+    // pseudo-transient solver it replaced needed 138 and ~400; the first one 813). Bounds with
+    // margin, so a regression to a relaxation fails.
+    let dir = scratch("refcage-newton");
+    for (el, bound) in [(10.0, 100), (5.0, 120)] {
+        let text = scene(0.5, "static", 1.0)
+            .replace("element_length = 5.0", &format!("element_length = {el}"));
+        let (iters, h) = static_history(&run_text(&dir, &format!("el{el}"), &text));
+        assert!(iters <= bound, "{el} m elements: {iters} iterations");
+        // Newton's quadratic convergence at the end: some iterate below 1e-2·F_ref whose
+        // successor has at least 1.6 times as many correct digits.
+        let quadratic = h
+            .windows(2)
+            .any(|w| w[0] < 1e-2 && w[1] > 1e-13 && w[1].ln() / w[0].ln() >= 1.6);
+        assert!(quadratic, "{el} m elements: no quadratic step in {h:?}");
+        assert!(*h.last().unwrap() <= 1e-6, "{h:?}");
+    }
+}

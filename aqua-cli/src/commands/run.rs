@@ -68,8 +68,8 @@ impl Observer for Terminal<'_> {
     }
     fn static_progress(&mut self, p: &StaticProgress) {
         self.bar.set_message(format!(
-            "load factor {:.3}, pseudo-step {}, iteration {}, residual {:.2e}·F_ref",
-            p.load_factor, p.pseudo_steps, p.iteration, p.relative_residual
+            "load factor {:.3}, iteration {}, residual {:.2e}·F_ref, damping {:.1e}",
+            p.load_factor, p.iteration, p.relative_residual, p.damping
         ));
         self.bar.tick();
     }
