@@ -88,6 +88,10 @@ pub(crate) struct System {
     pub fhydro: Vec<[f64; 3]>,
     /// Seabed contact force [N].
     pub fbed: Vec<[f64; 3]>,
+    /// −∂f_bed,z/∂z of the last evaluation (2·∂/∂z1 for the midpoint rule) [N/m].
+    bed_kz: Vec<f64>,
+    /// −∂f_bed,z/∂v_z of the last evaluation [N·s/m].
+    bed_cz: Vec<f64>,
     /// q = f_int − f_ext [N].
     pub q: Vec<[f64; 3]>,
     /// M·a (structural + added mass) [N].
@@ -271,6 +275,8 @@ impl System {
             fext: vec![[0.0; 3]; n],
             fhydro: vec![[0.0; 3]; n],
             fbed: vec![[0.0; 3]; n],
+            bed_kz: vec![0.0; n],
+            bed_cz: vec![0.0; n],
             q: vec![[0.0; 3]; n],
             ma: vec![[0.0; 3]; n],
             mv: vec![[0.0; 3]; n],
@@ -438,15 +444,44 @@ impl System {
             bed_k = s.stiffness;
             bed_c = if o.dynamic { s.damping } else { 0.0 };
         }
+        let secant = self.secant.as_ref();
         for i in 0..n {
+            self.bed_kz[i] = 0.0;
+            self.bed_cz[i] = 0.0;
             let d = zs - x[i][2];
-            if d > 0.0 {
-                let coef = model.bed_coef[i];
-                let f = (bed_k * d - bed_c * v[i][2]) * coef;
+            let coef = model.bed_coef[i];
+            let kb = bed_k * coef;
+            let kp = model.bed_point[i];
+            if let Some((x0, x1)) = secant {
+                // Energy-consistent contact for the midpoint rule: the discrete gradient of
+                // ½·k·max(z_s − z, 0)² between the step's ends, its tangent 2·∂f/∂z1
+                // (docs/theory/fem.md#energy-consistent-midpoint).
+                let (z0, z1) = (x0[i][2], x1[i][2]);
+                let (fe, ke) = bed_discrete_gradient(kb, zs, z0, z1);
+                let fd = if d > 0.0 {
+                    -bed_c * coef * v[i][2]
+                } else {
+                    0.0
+                };
+                if fe + fd > 0.0 {
+                    self.fbed[i][2] += fe + fd;
+                    self.bed_kz[i] += ke;
+                    if d > 0.0 {
+                        self.bed_cz[i] += bed_c * coef;
+                    }
+                }
+                let (fp, kpp) = bed_discrete_gradient(kp, zs, z0, z1);
+                self.fbed[i][2] += fp;
+                self.bed_kz[i] += kpp;
+            } else if d > 0.0 {
+                let f = kb * d - bed_c * coef * v[i][2];
                 if f > 0.0 {
                     self.fbed[i][2] += f;
+                    self.bed_kz[i] += kb;
+                    self.bed_cz[i] += bed_c * coef;
                 }
-                self.fbed[i][2] += model.bed_point[i] * d;
+                self.fbed[i][2] += kp * d;
+                self.bed_kz[i] += kp;
             }
         }
         let a_m = if o.dynamic { o.rayleigh.0 } else { 0.0 };
@@ -490,24 +525,12 @@ impl System {
             }
         }
         if let Some(cf) = o.jacobian {
-            self.assemble_jacobian(model, x, v, cf, o, zs, bed_k, bed_c, a_m);
+            self.assemble_jacobian(model, cf, o, a_m);
         }
         Ok(())
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn assemble_jacobian(
-        &mut self,
-        model: &Model,
-        x: &[[f64; 3]],
-        v: &[[f64; 3]],
-        cf: Coef,
-        o: &EvalOptions,
-        zs: f64,
-        bed_k: f64,
-        bed_c: f64,
-        a_m: f64,
-    ) {
+    fn assemble_jacobian(&mut self, model: &Model, cf: Coef, o: &EvalOptions, a_m: f64) {
         let vals = &mut self.values;
         vals.iter_mut().for_each(|x| *x = 0.0);
         let mass_c = cf.m + cf.c * a_m;
@@ -567,14 +590,9 @@ impl System {
                     vals[pp] += val;
                 }
             }
-            let d = zs - x[i][2];
             let pz = p[8];
-            if d > 0.0 && pz != NONE {
-                let coef = model.bed_coef[i];
-                if (bed_k * d - bed_c * v[i][2]) * coef > 0.0 {
-                    vals[pz] += cf.k * bed_k * coef + cf.c * bed_c * coef;
-                }
-                vals[pz] += cf.k * model.bed_point[i];
+            if pz != NONE {
+                vals[pz] += cf.k * self.bed_kz[i] + cf.c * self.bed_cz[i];
             }
         }
         // Load elements: stored block is already −scale·(k·dfdx + c·dfdv).
@@ -799,6 +817,24 @@ fn load_element<P: LoadProvider + ?Sized>(
 }
 
 #[inline]
+/// Discrete gradient of the contact energy E(z) = ½·k·max(z_s − z, 0)² between z0 and z1:
+/// the force f_z = −(E(z1) − E(z0))/(z1 − z0) [N] and 2·(−∂f_z/∂z1) [N/m], the midpoint rule's
+/// tangent; the limit k·max(z_s − z̄, 0) when the step barely moves
+/// (docs/theory/fem.md#energy-consistent-midpoint).
+fn bed_discrete_gradient(k: f64, zs: f64, z0: f64, z1: f64) -> (f64, f64) {
+    if k == 0.0 {
+        return (0.0, 0.0);
+    }
+    let (d0, d1) = ((zs - z0).max(0.0), (zs - z1).max(0.0));
+    let dz = z1 - z0;
+    if dz.abs() <= 1e-9 * (1.0 + zs.abs()) {
+        let d = (zs - 0.5 * (z0 + z1)).max(0.0);
+        return (k * d, if d > 0.0 { k } else { 0.0 });
+    }
+    let de = 0.5 * k * (d1 * d1 - d0 * d0);
+    (-de / dz, 2.0 * (-k * d1 * dz - de) / (dz * dz))
+}
+
 pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }

@@ -51,11 +51,14 @@ struct Terminal<'a> {
     files: RunFiles,
     bar: ProgressBar,
     quiet: bool,
+    /// Every diagnostic printed, for run.json.
+    diagnostics: Vec<String>,
 }
 
 impl Observer for Terminal<'_> {
     fn diagnostic(&mut self, d: &Diagnostic) {
         self.bar.suspend(|| eprintln!("{d}"));
+        self.diagnostics.push(d.to_string());
     }
     fn static_started(&mut self) {
         if !self.quiet {
@@ -126,12 +129,15 @@ pub fn run_scene(
     let a = RunOpts { out, quiet };
     let t0 = Instant::now();
     let prep = aqua_sim::prepare_with(scene, set)?;
+    let mut diagnostics = Vec::new();
     for d in prep.diagnostics() {
         eprintln!("{d}");
+        diagnostics.push(d.to_string());
     }
     let mut sim = Simulation::new(&prep)?;
     for d in sim.diagnostics() {
         eprintln!("{d}");
+        diagnostics.push(d.to_string());
     }
     let files = RunFiles::create(a.out, &prep.scene.name, &prep.built)?;
     if prep.built.sea.has_waves() && prep.plan.dynamics.is_some() {
@@ -144,13 +150,16 @@ pub fn run_scene(
         files,
         bar: ProgressBar::hidden(),
         quiet: a.quiet,
+        diagnostics,
     };
     let (mut record, result) = sim.run(&mut term);
     term.bar.finish_and_clear();
     record.wall = t0.elapsed().as_secs_f64();
     let files = term.files;
     print_step_control(&record);
-    files.write_json(&run_json(&prep, &record, &result, &files))?;
+    let mut json = run_json(&prep, &record, &result, &files);
+    json["diagnostics"] = serde_json::json!(term.diagnostics);
+    files.write_json(&json)?;
     match record.ending {
         Ending::Completed => {
             if !a.quiet {
