@@ -68,6 +68,7 @@
 //! }
 //! ```
 
+mod bending;
 mod cable;
 pub mod dynamics;
 pub mod error;
@@ -79,6 +80,7 @@ pub mod state;
 pub mod statics;
 mod system;
 
+pub use bending::Hinge;
 pub use dynamics::{
     DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, MassMatrix, StepControl,
     StepEvent, StepReport,
