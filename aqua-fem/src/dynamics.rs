@@ -563,7 +563,8 @@ impl<'m> DynamicSolver<'m> {
             mv,
         );
         let mut b = Balance {
-            strain: out.strain_energy(model),
+            // Axial and bending (docs/theory/fem.md#bending) strain energy.
+            strain: out.strain_energy(model) + self.sys.bending_energy(),
             ..Balance::default()
         };
         for i in 0..n {

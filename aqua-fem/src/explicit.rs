@@ -239,6 +239,10 @@ impl<'m> ExplicitSolver<'m> {
             k_sum[e.a] += k;
             k_sum[e.b] += k;
         }
+        // Bending: Gershgorin row sums of the hinge tangents (docs/theory/fem.md#stable-step);
+        // 2·Σk bounds the cable rows, ω² ≤ max row sum/m bounds the hinge part.
+        let mut k_bend = vec![0.0; n];
+        self.sys.add_hinge_row_sums(model, &mut k_bend);
         let c_rows = self.sys.row_abs_sums();
         let kb = model.env.seabed.map(|s| s.stiffness).unwrap_or(0.0);
         let mut dt = f64::INFINITY;
@@ -247,7 +251,7 @@ impl<'m> ExplicitSolver<'m> {
                 continue;
             }
             let m = model.lumped_mass[i];
-            let w2 = 2.0 * k_sum[i] / m + (kb * model.bed_coef[i] + model.bed_point[i]) / m;
+            let w2 = (2.0 * k_sum[i] + k_bend[i] + kb * model.bed_coef[i] + model.bed_point[i]) / m;
             if w2 > 0.0 {
                 dt = dt.min(2.0 / w2.sqrt());
             }
@@ -372,7 +376,7 @@ impl<'m> ExplicitSolver<'m> {
                 ek += 0.5 * v[k] * mv;
             }
         }
-        let u = self.outputs.strain_energy(model);
+        let u = self.outputs.strain_energy(model) + self.sys.bending_energy();
         let mut power = 0.0;
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
             power += c.switch * e.ca * c.strain_rate * c.strain_rate * e.l0;

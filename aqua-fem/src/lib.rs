@@ -1,8 +1,9 @@
 //! # aqua-fem — cable structures in statics and dynamics
 //!
 //! Nets, ropes and moorings as chains of 2-node cable elements with three translational DOF
-//! per node (large displacements, no bending), point bodies on nodes, fixed and prescribed
-//! nodes, and a penalty seabed. Water loads (drag, lift, inertia, buoyancy, added mass) come
+//! per node (large displacements), rotation-free bending hinges on three consecutive nodes
+//! ([`ModelBuilder::add_bending`], docs/theory/fem.md#bending), point bodies on nodes, fixed and
+//! prescribed nodes, and a penalty seabed. Water loads (drag, lift, inertia, buoyancy, added mass) come
 //! from a [`LoadProvider`]; this crate knows only gravity, elasticity, point masses and the
 //! seabed (theory: `docs/theory/fem.md`).
 //!
@@ -18,6 +19,9 @@
 //!   k = s·EA/L0·eeᵀ + T/l·(I − eeᵀ) (+ the small non-symmetric damping term), c = s·c_a/L0·eeᵀ.
 //! * Mass: lumped μL0/2 per node (default) or consistent μL0/6·[2I, I; I, 2I]; point masses and
 //!   the provider's added-mass 3×3 blocks add per node.
+//! * Bending hinge (nodes a, b, c; EI, as-built κ̄ and ℓ̄): t = ê₁·ê₂ of the edges
+//!   e₁ = x_b − x_a, e₂ = x_c − x_b, |κb| = 2·tan(φ/2), W = EI/(2ℓ̄)·(|κb| − κ̄)², f_int = ∂W/∂x,
+//!   exact 9×9 tangent; rotation invariant, torsion neglected.
 //! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
 //! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
 //! * Water loads f_h(t, x, v) and their Jacobians −∂f_h/∂v (damping) and −∂f_h/∂x (stiffness)
@@ -68,6 +72,7 @@
 //! }
 //! ```
 
+mod bending;
 mod cable;
 pub mod dynamics;
 pub mod error;
@@ -79,6 +84,7 @@ pub mod state;
 pub mod statics;
 mod system;
 
+pub use bending::Hinge;
 pub use dynamics::{
     DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, MassMatrix, StepControl,
     StepEvent, StepReport,

@@ -1,5 +1,6 @@
 //! The structural model: nodes, cable elements, point bodies, supports, seabed.
 
+use crate::bending::Hinge;
 use crate::error::{FemError, Result, invalid};
 use crate::motion::{Motion, check_finite3};
 use serde::{Deserialize, Serialize};
@@ -272,6 +273,7 @@ pub struct ModelBuilder {
     points: Vec<PointBody>,
     supports: Vec<Support>,
     motions: Vec<Motion>,
+    hinges: Vec<Hinge>,
 }
 
 impl ModelBuilder {
@@ -379,6 +381,62 @@ impl ModelBuilder {
         });
         self.groups[group.0].elements.push(id);
         Ok(id)
+    }
+
+    /// Adds a bending hinge on the consecutive nodes a, b, c (b the hinge node) with bending
+    /// stiffness EI [N·m²] (> 0); its rest curvature and length are those of the as-built
+    /// positions, so the as-built shape is force free (docs/theory/fem.md#bending). The nodes
+    /// should be joined by elements (a–b, b–c) that carry the axial stiffness and the mass.
+    /// Returns the hinge index.
+    pub fn add_bending(&mut self, a: usize, b: usize, c: usize, ei: f64) -> Result<usize> {
+        let id = self.hinges.len();
+        for nd in [a, b, c] {
+            self.check_node(&format!("bending hinge {id}"), nd)?;
+        }
+        if a == b || b == c || a == c {
+            return Err(FemError::InvalidModel(format!(
+                "bending hinge {id} needs three distinct nodes, got {a}, {b}, {c}"
+            )));
+        }
+        if !(ei.is_finite() && ei > 0.0) {
+            return Err(invalid(
+                format!("bending hinge {id} (nodes {a}-{b}-{c}) bending_stiffness EI [N m^2]"),
+                ei,
+                "> 0 and finite",
+            ));
+        }
+        let x = [self.nodes[a], self.nodes[b], self.nodes[c]];
+        let hinge = Hinge::as_built([a, b, c], ei, x).ok_or_else(|| {
+            FemError::InvalidModel(format!(
+                "bending hinge {id} (nodes {a}-{b}-{c}): an as-built edge has zero length or \
+                 the edges fold back onto each other"
+            ))
+        })?;
+        self.hinges.push(hinge);
+        Ok(id)
+    }
+
+    /// Adds bending hinges with stiffness EI [N·m²] at every interior node of the node chain
+    /// `nodes` (and, if `closed`, at the first and last nodes too, for a ring whose last node
+    /// joins the first). Returns the index range of the hinges added.
+    pub fn add_bending_line(
+        &mut self,
+        nodes: &[usize],
+        ei: f64,
+        closed: bool,
+    ) -> Result<std::ops::Range<usize>> {
+        let start = self.hinges.len();
+        let n = nodes.len();
+        if closed && n >= 3 {
+            for i in 0..n {
+                self.add_bending(nodes[(i + n - 1) % n], nodes[i], nodes[(i + 1) % n], ei)?;
+            }
+        } else {
+            for w in nodes.windows(3) {
+                self.add_bending(w[0], w[1], w[2], ei)?;
+            }
+        }
+        Ok(start..self.hinges.len())
     }
 
     /// Adds a point body (mass [kg], constant force [N], seabed stiffness [N/m]) on a node.
@@ -517,6 +575,7 @@ impl ModelBuilder {
             points: self.points,
             supports: self.supports,
             motions: self.motions,
+            hinges: self.hinges,
             lumped_mass,
             weight,
             point_force,
@@ -543,6 +602,7 @@ pub struct Model {
     pub(crate) points: Vec<PointBody>,
     pub(crate) supports: Vec<Support>,
     pub(crate) motions: Vec<Motion>,
+    pub(crate) hinges: Vec<Hinge>,
     /// Lumped structural mass per node [kg].
     pub(crate) lumped_mass: Vec<f64>,
     /// Nodal weight vector [N].
@@ -574,6 +634,10 @@ impl Model {
     /// Cable elements.
     pub fn elements(&self) -> &[Cable] {
         &self.elements
+    }
+    /// Bending hinges.
+    pub fn hinges(&self) -> &[Hinge] {
+        &self.hinges
     }
     /// Groups.
     pub fn groups(&self) -> &[Group] {

@@ -174,6 +174,8 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     f_frozen: Vec<f64>,
     /// Element lengths at the iterate [m].
     len_x: Vec<f64>,
+    /// Bending energy of the hinges at the iterate [J].
+    bend_x: f64,
     /// Free residual at the iterate (kept while trial points overwrite `r`) [N].
     r_x: Vec<f64>,
     r: Vec<f64>,
@@ -286,6 +288,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         d_node: node_axial_stiffness(model),
         f_frozen: vec![0.0; nf],
         len_x: vec![0.0; model.elements().len()],
+        bend_x: 0.0,
         r_x: vec![0.0; nf],
         r: vec![0.0; nf],
         dx: vec![0.0; nf],
@@ -469,12 +472,13 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     }
 
     /// Stores what the merit and a rejected step need at the iterate, from the last
-    /// evaluation and residual at `self.x`: element lengths, the external force without the
-    /// seabed, and the residual.
+    /// evaluation and residual at `self.x`: element lengths, bending energy, the external force
+    /// without the seabed, and the residual.
     fn freeze(&mut self) {
         for (l, c) in self.len_x.iter_mut().zip(&self.sys.cable) {
             *l = c.length;
         }
+        self.bend_x = self.sys.bending_energy();
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             let (i, k) = (gd / 3, gd % 3);
             self.f_frozen[f] = self.sys.fext[i][k] - self.sys.fbed[i][k];
@@ -482,12 +486,12 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         self.r_x.copy_from_slice(&self.r);
     }
 
-    /// Decrease of the merit from `self.x` to `self.x_trial` (evaluated): strain and seabed
-    /// energy exactly, the other external forces frozen at `self.x`, so that its gradient at
+    /// Decrease of the merit from `self.x` to `self.x_trial` (evaluated): strain (axial and
+    /// bending, docs/theory/fem.md#bending) and seabed energy exactly, the other external forces frozen at `self.x`, so that its gradient at
     /// `self.x` is the residual (docs/theory/fem.md#static-solver). Positive when the trial
     /// is better.
     fn merit_decrease(&self) -> f64 {
-        let mut dw = 0.0;
+        let mut dw = self.sys.bending_energy() - self.bend_x;
         for ((e, c), &l_x) in self
             .model
             .elements()

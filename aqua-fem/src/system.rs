@@ -2,6 +2,7 @@
 //! Jacobian, and the sparse LU with its symbolic factorisation reused
 //! (docs/theory/fem.md#sparse-linear-algebra).
 
+use crate::bending::{self, HingeEval};
 use crate::cable::{self, CableEval};
 use crate::error::{FemError, Result};
 use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
@@ -71,6 +72,7 @@ pub(crate) struct System {
     row_idx: Vec<usize>,
     pub values: Vec<f64>,
     cable_pos: Vec<[usize; 36]>,
+    hinge_pos: Vec<[usize; 81]>,
     node_pos: Vec<[usize; 9]>,
     load_nodes: Vec<[usize; MAX_LOAD_NODES]>,
     load_nn: Vec<usize>,
@@ -80,6 +82,9 @@ pub(crate) struct System {
     load_buf: Vec<f64>,
     /// Per-element results of the last evaluation.
     pub cable: Vec<CableEval>,
+    /// Per-hinge results of the last evaluation (energy, force, tangent when a Jacobian was
+    /// asked for).
+    pub hinge: Vec<HingeEval>,
     /// Internal (elastic + axial damping + Rayleigh) force, q sense [N].
     pub fint: Vec<[f64; 3]>,
     /// External forces on the structure: gravity, point forces, water loads, seabed [N].
@@ -171,6 +176,11 @@ impl System {
             adj[e.a].push(e.b);
             adj[e.b].push(e.a);
         }
+        for h in model.hinges() {
+            for &p in &h.nodes {
+                adj[p].extend(h.nodes.iter().filter(|&&q| q != p));
+            }
+        }
         for (e, nodes) in load_nodes.iter().enumerate() {
             let nn = load_nn[e];
             for &p in &nodes[..nn] {
@@ -226,6 +236,20 @@ impl System {
             }
             cable_pos.push(p);
         }
+        let mut hinge_pos = Vec::with_capacity(model.hinges().len());
+        for h in model.hinges() {
+            let mut p = [NONE; 81];
+            for (i, &ni) in h.nodes.iter().enumerate() {
+                for (j, &nj) in h.nodes.iter().enumerate() {
+                    for ki in 0..3 {
+                        for kj in 0..3 {
+                            p[(3 * i + ki) * 9 + 3 * j + kj] = pos(ni, ki, nj, kj);
+                        }
+                    }
+                }
+            }
+            hinge_pos.push(p);
+        }
         let mut node_pos = Vec::with_capacity(n);
         for i in 0..n {
             let mut p = [NONE; 9];
@@ -263,6 +287,7 @@ impl System {
             row_idx,
             values: vec![0.0; nnz],
             cable_pos,
+            hinge_pos,
             node_pos,
             load_nodes,
             load_nn,
@@ -271,6 +296,7 @@ impl System {
             load_stride,
             load_buf: vec![0.0; load_stride * nl],
             cable: vec![CableEval::default(); model.elements().len()],
+            hinge: vec![HingeEval::default(); model.hinges().len()],
             fint: vec![[0.0; 3]; n],
             fext: vec![[0.0; 3]; n],
             fhydro: vec![[0.0; 3]; n],
@@ -355,6 +381,7 @@ impl System {
                 e.a, e.b, self.cable[i].length, e.l0
             )));
         }
+        self.evaluate_hinges(model, x, o.jacobian.is_some())?;
         // Load elements.
         let nl = self.load_nn.len();
         if nl > 0 {
@@ -420,6 +447,13 @@ impl System {
             for k in 0..3 {
                 self.fint[e.a][k] -= c.force_b[k];
                 self.fint[e.b][k] += c.force_b[k];
+            }
+        }
+        for (h, ev) in model.hinges().iter().zip(&self.hinge) {
+            for (&nd, f) in h.nodes.iter().zip(&ev.force) {
+                for k in 0..3 {
+                    self.fint[nd][k] += f[k];
+                }
             }
         }
         for e in 0..nl {
@@ -566,6 +600,19 @@ impl System {
                 }
             }
         }
+        // Bending hinges (docs/theory/fem.md#bending).
+        if cf.k != 0.0 {
+            for (p, ev) in self.hinge_pos.iter().zip(&self.hinge) {
+                for (r, row) in ev.k.iter().enumerate() {
+                    for (c, &kv) in row.iter().enumerate() {
+                        let pp = p[9 * r + c];
+                        if pp != NONE {
+                            vals[pp] += cf.k * kv;
+                        }
+                    }
+                }
+            }
+        }
         // Node blocks: lumped/point mass, added mass, seabed.
         for i in 0..self.n_nodes {
             let p = &self.node_pos[i];
@@ -607,6 +654,51 @@ impl System {
                 }
             }
             debug_assert_eq!(pos.len(), nd * nd);
+        }
+    }
+
+    /// Evaluates the bending hinges at `x` (docs/theory/fem.md#bending); in the energy-consistent
+    /// midpoint rule they are evaluated at the midpoint like everything else (no discrete
+    /// gradient for bending).
+    fn evaluate_hinges(&mut self, model: &Model, x: &[[f64; 3]], tangent: bool) -> Result<()> {
+        let hinges = model.hinges();
+        let kernel = |(h, out): (&bending::Hinge, &mut HingeEval)| {
+            let [a, b, c] = h.nodes;
+            bending::evaluate(h, x[a], x[b], x[c], tangent, out);
+        };
+        if hinges.len() >= PAR_THRESHOLD {
+            hinges
+                .par_iter()
+                .zip(self.hinge.par_iter_mut())
+                .for_each(kernel);
+        } else {
+            hinges.iter().zip(self.hinge.iter_mut()).for_each(kernel);
+        }
+        if let Some(i) = self.hinge.iter().position(|h| h.bad) {
+            let [a, b, c] = hinges[i].nodes;
+            return Err(FemError::NonFinite(format!(
+                "bending hinge {i} (nodes {a}-{b}-{c}): an edge has zero length, the edges fold \
+                 back onto each other, or the bending force is non-finite"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Total bending energy Σ W of the hinges at the last evaluation [J].
+    pub fn bending_energy(&self) -> f64 {
+        self.hinge.iter().map(|h| h.energy).sum()
+    }
+
+    /// Per node, the largest row sum of |∂²W/∂x²| of the hinges (Gershgorin bound of the
+    /// bending stiffness) at the last evaluation with a Jacobian [N/m], added into `out`.
+    pub fn add_hinge_row_sums(&self, model: &Model, out: &mut [f64]) {
+        for (h, ev) in model.hinges().iter().zip(&self.hinge) {
+            for (i, &nd) in h.nodes.iter().enumerate() {
+                let m = (0..3)
+                    .map(|k| ev.k[3 * i + k].iter().map(|v| v.abs()).sum::<f64>())
+                    .fold(0.0, f64::max);
+                out[nd] += m;
+            }
         }
     }
 
