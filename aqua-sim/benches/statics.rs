@@ -16,12 +16,10 @@ use std::time::{Duration, Instant};
 
 fn cage(element_length: f64) -> (Scene, Built) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/reference-cage.toml");
-    let text = std::fs::read_to_string(&path)
-        .expect("example")
-        .replace(
-            "element_length = 2.5",
-            &format!("element_length = {element_length}"),
-        );
+    let text = std::fs::read_to_string(&path).expect("example").replace(
+        "element_length = 2.5",
+        &format!("element_length = {element_length}"),
+    );
     let scene = parse_scene(&text, &path).expect("scene");
     let built = build(&scene).expect("model");
     (scene, built)
