@@ -39,11 +39,18 @@
 //!
 //! # Files
 //!
-//! Each `.vtu` and the `.vtm` are written to a temporary name and renamed; the `.vtm` only after
-//! all its blocks, and the `.pvd` lists a step only after its `.vtm` exists. The `.pvd` grows by
-//! one line per step (written in place before its closing tags), so a long run does not rewrite
-//! it; no file is fsynced per step (the series survives the process being stopped at any
-//! moment, not a power cut).
+//! Per step: one directory, its block files written in place (each in one `write`), then the
+//! `.vtm` written to a temporary name and renamed, then one line in the `.pvd`: the new
+//! `<DataSet>` and the closing tags written in one `write` over the old closing tags, so a
+//! long run never rewrites the `.pvd`. The parts of a block file that are the same every
+//! step (ids, names, sections, connectivity) are rendered once. Data arrays are inline
+//! base64 (`format="binary"`), so every file stays well-formed XML.
+//!
+//! Nothing is fsynced. What holds if the process stops at any moment (an error, Ctrl-C, a
+//! kill): every step the `.pvd` lists is complete, and every `<stem>_NNNNNN.vtm` on disk is
+//! complete and listed, except that a kill during the one small `.pvd` write can cut that
+//! line. A failed step removes what it had written. Against an operating-system crash or a
+//! power cut nothing is promised (the page cache may not have reached the disk).
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, PanelNodes, Role};
@@ -348,22 +355,24 @@ fn xml_escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// Inline binary data: base64 of the byte count (UInt64) followed by the bytes.
-fn b64(bytes: &[u8]) -> String {
+/// Inline binary data: base64 of the byte count (UInt64) followed by the bytes, appended to
+/// `out`.
+fn b64_into(out: &mut String, bytes: &[u8]) {
     let mut buf = Vec::with_capacity(8 + bytes.len());
     buf.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
     buf.extend_from_slice(bytes);
-    base64::engine::general_purpose::STANDARD.encode(buf)
+    base64::engine::general_purpose::STANDARD.encode_string(buf, out);
 }
 
 fn data_array(out: &mut String, ty: &str, name: &str, comps: usize, bytes: &[u8]) {
-    let _ = writeln!(
+    let _ = write!(
         out,
         "        <DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{comps}\" \
-         format=\"binary\">\n          {}\n        </DataArray>",
+         format=\"binary\">\n          ",
         xml_escape(name),
-        b64(bytes)
     );
+    b64_into(out, bytes);
+    out.push_str("\n        </DataArray>\n");
 }
 
 fn f64_bytes(v: &[f64]) -> Vec<u8> {
@@ -401,14 +410,14 @@ fn string_array(out: &mut String, name: &str, values: &[String]) {
         bytes.extend_from_slice(v.as_bytes());
         bytes.push(0);
     }
-    let _ = writeln!(
+    let _ = write!(
         out,
-        "      <Array type=\"String\" Name=\"{}\" NumberOfTuples=\"{}\" format=\"binary\">\n        \
-         {}\n      </Array>",
+        "      <Array type=\"String\" Name=\"{}\" NumberOfTuples=\"{}\" format=\"binary\">\n        ",
         xml_escape(name),
         values.len(),
-        b64(&bytes)
     );
+    b64_into(out, &bytes);
+    out.push_str("\n      </Array>\n");
 }
 
 /// Write `path` by filling a temporary file next to it and renaming it into place (no fsync:
@@ -497,172 +506,215 @@ struct NodeData {
     weight: Vec<f64>,
 }
 
-fn block_vtu(
-    mesh: &Mesh,
-    spec: &BlockSpec,
-    positions: &[Point3<f64>],
-    time: Option<f64>,
-    names: &NameTables,
-    nd: &NodeData,
-    arrays: &StepArrays,
-) -> String {
-    let mut local = std::collections::HashMap::with_capacity(spec.nodes.len());
-    for (k, &n) in spec.nodes.iter().enumerate() {
-        local.insert(n, k as i64);
-    }
-    let mut conn: Vec<i64> = Vec::new();
-    let mut offsets: Vec<i64> = Vec::new();
-    let mut types: Vec<u8> = Vec::new();
-    match spec.kind {
-        BlockKind::Lines => {
-            for &e in &spec.cells {
-                conn.extend(mesh.lines[e].nodes.iter().map(|n| local[n]));
-                offsets.push(conn.len() as i64);
-                types.push(3);
+/// The parts of a block's `.vtu` that are the same every step (ids, names, sections,
+/// connectivity), rendered once; [`BlockTemplate::render`] puts a step's time, arrays and
+/// points between them.
+#[derive(Debug, Clone, PartialEq)]
+struct BlockTemplate {
+    /// Up to the field data's first array; the field data after `TimeValue` up to the
+    /// built-in point arrays; the built-in cell arrays; the opening of `<Points>`; the cells
+    /// and closing tags.
+    parts: [String; 5],
+}
+
+impl BlockTemplate {
+    fn new(mesh: &Mesh, spec: &BlockSpec, names: &NameTables, nd: &NodeData) -> Self {
+        let mut local = std::collections::HashMap::with_capacity(spec.nodes.len());
+        for (k, &n) in spec.nodes.iter().enumerate() {
+            local.insert(n, k as i64);
+        }
+        let mut conn: Vec<i64> = Vec::new();
+        let mut offsets: Vec<i64> = Vec::new();
+        let mut types: Vec<u8> = Vec::new();
+        match spec.kind {
+            BlockKind::Lines => {
+                for &e in &spec.cells {
+                    conn.extend(mesh.lines[e].nodes.iter().map(|n| local[n]));
+                    offsets.push(conn.len() as i64);
+                    types.push(3);
+                }
+            }
+            BlockKind::Panels => {
+                for &p in &spec.cells {
+                    let pn = &mesh.panels[p].nodes;
+                    conn.extend(pn.as_slice().iter().map(|n| local[n]));
+                    offsets.push(conn.len() as i64);
+                    types.push(match pn {
+                        PanelNodes::Tri(_) => 5,
+                        PanelNodes::Quad(_) => 9,
+                    });
+                }
+            }
+            BlockKind::Points => {
+                for k in 0..spec.nodes.len() {
+                    conn.push(k as i64);
+                    offsets.push(k as i64 + 1);
+                    types.push(1);
+                }
             }
         }
-        BlockKind::Panels => {
-            for &p in &spec.cells {
-                let pn = &mesh.panels[p].nodes;
-                conn.extend(pn.as_slice().iter().map(|n| local[n]));
-                offsets.push(conn.len() as i64);
-                types.push(match pn {
-                    PanelNodes::Tri(_) => 5,
-                    PanelNodes::Quad(_) => 9,
-                });
-            }
-        }
-        BlockKind::Points => {
-            for k in 0..spec.nodes.len() {
-                conn.push(k as i64);
-                offsets.push(k as i64 + 1);
-                types.push(1);
-            }
-        }
-    }
-    let mut s = String::with_capacity(256 + 64 * spec.nodes.len());
-    s.push_str(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
+        let mut parts: [String; 5] = Default::default();
+        let mut s = String::new();
+        s.push_str(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
          byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n    \
          <FieldData>\n",
-    );
-    if let Some(t) = time {
+        );
+        parts[0] = std::mem::take(&mut s);
+        string_array(&mut s, "block_name", &[spec.name()]);
+        string_array(&mut s, "object_names", &names.object_names);
+        string_array(&mut s, "group_names", &names.group_names);
+        string_array(&mut s, "role_names", &names.role_names);
         let _ = writeln!(
             s,
-            "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" \
-             format=\"binary\">\n        {}\n      </DataArray>",
-            b64(&t.to_le_bytes())
+            "    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+            spec.nodes.len(),
+            types.len()
         );
-    }
-    string_array(&mut s, "block_name", &[spec.name()]);
-    string_array(&mut s, "object_names", &names.object_names);
-    string_array(&mut s, "group_names", &names.group_names);
-    string_array(&mut s, "role_names", &names.role_names);
-    let _ = writeln!(
-        s,
-        "    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-        spec.nodes.len(),
-        types.len()
-    );
-    // Point data.
-    s.push_str("      <PointData>\n");
-    let nodes = &spec.nodes;
-    let ids: Vec<i32> = nodes.iter().map(|&n| n as i32).collect();
-    data_array(&mut s, "Int32", "node_id", 1, &i32_bytes(&ids));
-    let own: Vec<i32> = nodes.iter().map(|&n| mesh.node_owner[n].0 as i32).collect();
-    data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&own));
-    let cp: Vec<i32> = nodes.iter().map(|&n| mesh.node_owner[n].1 as i32).collect();
-    data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
-    let fx: Vec<i32> = nodes.iter().map(|&n| nd.fixed[n]).collect();
-    data_array(&mut s, "Int32", "fixed", 1, &i32_bytes(&fx));
-    let w: Vec<f64> = nodes.iter().map(|&n| nd.weight[n]).collect();
-    data_array(&mut s, "Float64", "point_weight", 1, &f64_bytes(&w));
-    for a in &arrays.point {
-        array_subset(&mut s, a, nodes);
-    }
-    s.push_str("      </PointData>\n      <CellData>\n");
-    // Cell data.
-    match spec.kind {
-        BlockKind::Lines => {
-            let c = &spec.cells;
-            let ids: Vec<i32> = c.iter().map(|&e| e as i32).collect();
-            data_array(&mut s, "Int32", "element_id", 1, &i32_bytes(&ids));
-            let lines = || c.iter().map(|&e| &mesh.lines[e]);
-            let g: Vec<i32> = lines().map(|l| l.group as i32).collect();
-            data_array(&mut s, "Int32", "group_id", 1, &i32_bytes(&g));
-            let r: Vec<i32> = lines()
-                .map(|l| mesh.groups[l.group].role.id() as i32)
-                .collect();
-            data_array(&mut s, "Int32", "role_id", 1, &i32_bytes(&r));
-            let o: Vec<i32> = lines().map(|l| l.object as i32).collect();
-            data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&o));
-            let cp: Vec<i32> = lines().map(|l| l.copy as i32).collect();
-            data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
-            type Diam = fn(&crate::Section) -> f64;
-            let diam: [(&str, Diam); 3] = [
-                ("diameter", |s| s.diameter),
-                ("elastic_diameter", |s| s.elastic_diameter),
-                ("hydro_diameter", |s| s.hydro_diameter),
-            ];
-            for (name, f) in diam {
-                let d: Vec<f64> = lines()
-                    .map(|l| mesh.groups[l.group].section.as_ref().map_or(0.0, f))
+        // Point data.
+        s.push_str("      <PointData>\n");
+        let nodes = &spec.nodes;
+        let ids: Vec<i32> = nodes.iter().map(|&n| n as i32).collect();
+        data_array(&mut s, "Int32", "node_id", 1, &i32_bytes(&ids));
+        let own: Vec<i32> = nodes.iter().map(|&n| mesh.node_owner[n].0 as i32).collect();
+        data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&own));
+        let cp: Vec<i32> = nodes.iter().map(|&n| mesh.node_owner[n].1 as i32).collect();
+        data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
+        let fx: Vec<i32> = nodes.iter().map(|&n| nd.fixed[n]).collect();
+        data_array(&mut s, "Int32", "fixed", 1, &i32_bytes(&fx));
+        let w: Vec<f64> = nodes.iter().map(|&n| nd.weight[n]).collect();
+        data_array(&mut s, "Float64", "point_weight", 1, &f64_bytes(&w));
+        parts[1] = std::mem::take(&mut s);
+        s.push_str("      </PointData>\n      <CellData>\n");
+        // Cell data.
+        match spec.kind {
+            BlockKind::Lines => {
+                let c = &spec.cells;
+                let ids: Vec<i32> = c.iter().map(|&e| e as i32).collect();
+                data_array(&mut s, "Int32", "element_id", 1, &i32_bytes(&ids));
+                let lines = || c.iter().map(|&e| &mesh.lines[e]);
+                let g: Vec<i32> = lines().map(|l| l.group as i32).collect();
+                data_array(&mut s, "Int32", "group_id", 1, &i32_bytes(&g));
+                let r: Vec<i32> = lines()
+                    .map(|l| mesh.groups[l.group].role.id() as i32)
                     .collect();
-                data_array(&mut s, "Float64", name, 1, &f64_bytes(&d));
+                data_array(&mut s, "Int32", "role_id", 1, &i32_bytes(&r));
+                let o: Vec<i32> = lines().map(|l| l.object as i32).collect();
+                data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&o));
+                let cp: Vec<i32> = lines().map(|l| l.copy as i32).collect();
+                data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
+                type Diam = fn(&crate::Section) -> f64;
+                let diam: [(&str, Diam); 3] = [
+                    ("diameter", |s| s.diameter),
+                    ("elastic_diameter", |s| s.elastic_diameter),
+                    ("hydro_diameter", |s| s.hydro_diameter),
+                ];
+                for (name, f) in diam {
+                    let d: Vec<f64> = lines()
+                        .map(|l| mesh.groups[l.group].section.as_ref().map_or(0.0, f))
+                        .collect();
+                    data_array(&mut s, "Float64", name, 1, &f64_bytes(&d));
+                }
             }
-            for a in &arrays.line {
-                array_subset(&mut s, a, c);
+            BlockKind::Panels => {
+                let c = &spec.cells;
+                let ids: Vec<i32> = c.iter().map(|&e| e as i32).collect();
+                data_array(&mut s, "Int32", "panel_id", 1, &i32_bytes(&ids));
+                let panels = || c.iter().map(|&e| &mesh.panels[e]);
+                let g: Vec<i32> = panels().map(|p| p.group as i32).collect();
+                data_array(&mut s, "Int32", "group_id", 1, &i32_bytes(&g));
+                let r: Vec<i32> = panels()
+                    .map(|p| mesh.groups[p.group].role.id() as i32)
+                    .collect();
+                data_array(&mut s, "Int32", "role_id", 1, &i32_bytes(&r));
+                let o: Vec<i32> = panels().map(|p| p.object as i32).collect();
+                data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&o));
+                let cp: Vec<i32> = panels().map(|p| p.copy as i32).collect();
+                data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
+                let net = |p: &crate::Panel| {
+                    mesh.objects
+                        .get(p.object as usize)
+                        .and_then(|o| o.net.as_ref())
+                };
+                let dw: Vec<f64> = panels()
+                    .map(|p| net(p).map_or(0.0, |n| n.twine_diameter))
+                    .collect();
+                data_array(&mut s, "Float64", "twine_diameter", 1, &f64_bytes(&dw));
+                let sn: Vec<f64> = panels()
+                    .map(|p| net(p).map_or(0.0, |n| n.solidity))
+                    .collect();
+                data_array(&mut s, "Float64", "solidity", 1, &f64_bytes(&sn));
             }
+            BlockKind::Points => {}
         }
-        BlockKind::Panels => {
-            let c = &spec.cells;
-            let ids: Vec<i32> = c.iter().map(|&e| e as i32).collect();
-            data_array(&mut s, "Int32", "panel_id", 1, &i32_bytes(&ids));
-            let panels = || c.iter().map(|&e| &mesh.panels[e]);
-            let g: Vec<i32> = panels().map(|p| p.group as i32).collect();
-            data_array(&mut s, "Int32", "group_id", 1, &i32_bytes(&g));
-            let r: Vec<i32> = panels()
-                .map(|p| mesh.groups[p.group].role.id() as i32)
-                .collect();
-            data_array(&mut s, "Int32", "role_id", 1, &i32_bytes(&r));
-            let o: Vec<i32> = panels().map(|p| p.object as i32).collect();
-            data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&o));
-            let cp: Vec<i32> = panels().map(|p| p.copy as i32).collect();
-            data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
-            let net = |p: &crate::Panel| {
-                mesh.objects
-                    .get(p.object as usize)
-                    .and_then(|o| o.net.as_ref())
-            };
-            let dw: Vec<f64> = panels()
-                .map(|p| net(p).map_or(0.0, |n| n.twine_diameter))
-                .collect();
-            data_array(&mut s, "Float64", "twine_diameter", 1, &f64_bytes(&dw));
-            let sn: Vec<f64> = panels()
-                .map(|p| net(p).map_or(0.0, |n| n.solidity))
-                .collect();
-            data_array(&mut s, "Float64", "solidity", 1, &f64_bytes(&sn));
-            for a in &arrays.panel {
-                array_subset(&mut s, a, c);
-            }
-        }
-        BlockKind::Points => {}
+        parts[2] = std::mem::take(&mut s);
+        s.push_str("      </CellData>\n      <Points>\n");
+        parts[3] = std::mem::take(&mut s);
+        s.push_str("      </Points>\n      <Cells>\n");
+        data_array(&mut s, "Int64", "connectivity", 1, &i64_bytes(&conn));
+        data_array(&mut s, "Int64", "offsets", 1, &i64_bytes(&offsets));
+        data_array(&mut s, "UInt8", "types", 1, &types);
+        s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+        parts[4] = s;
+        BlockTemplate { parts }
     }
-    s.push_str("      </CellData>\n      <Points>\n");
-    let pts: Vec<f64> = nodes
-        .iter()
-        .flat_map(|&n| {
-            let p = positions[n];
-            [p.x, p.y, p.z]
-        })
-        .collect();
-    data_array(&mut s, "Float64", "Points", 3, &f64_bytes(&pts));
-    s.push_str("      </Points>\n      <Cells>\n");
-    data_array(&mut s, "Int64", "connectivity", 1, &i64_bytes(&conn));
-    data_array(&mut s, "Int64", "offsets", 1, &i64_bytes(&offsets));
-    data_array(&mut s, "UInt8", "types", 1, &types);
-    s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-    s
+
+    /// The block's `.vtu` at `time` (none: the reference) with the caller's arrays.
+    fn render(
+        &self,
+        spec: &BlockSpec,
+        positions: &[Point3<f64>],
+        time: Option<f64>,
+        arrays: &StepArrays,
+    ) -> String {
+        let p = &self.parts;
+        let n = spec.nodes.len();
+        let per_point: usize = arrays
+            .point
+            .iter()
+            .map(|a| 8 * a.components())
+            .sum::<usize>()
+            + 24;
+        let per_cell: usize = 8 * (arrays.line.len() + arrays.panel.len());
+        let cap = p.iter().map(String::len).sum::<usize>()
+            + (n * per_point + spec.cells.len() * per_cell) * 4 / 3
+            + 512 * (arrays.point.len() + arrays.line.len() + arrays.panel.len() + 2);
+        let mut s = String::with_capacity(cap);
+        s.push_str(&p[0]);
+        if let Some(t) = time {
+            s.push_str(
+                "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" \
+                 format=\"binary\">\n        ",
+            );
+            b64_into(&mut s, &t.to_le_bytes());
+            s.push_str("\n      </DataArray>\n");
+        }
+        s.push_str(&p[1]);
+        for a in &arrays.point {
+            array_subset(&mut s, a, &spec.nodes);
+        }
+        s.push_str(&p[2]);
+        let cell_arrays = match spec.kind {
+            BlockKind::Lines => arrays.line.as_slice(),
+            BlockKind::Panels => arrays.panel.as_slice(),
+            BlockKind::Points => &[],
+        };
+        for a in cell_arrays {
+            array_subset(&mut s, a, &spec.cells);
+        }
+        s.push_str(&p[3]);
+        let pts: Vec<f64> = spec
+            .nodes
+            .iter()
+            .flat_map(|&n| {
+                let p = positions[n];
+                [p.x, p.y, p.z]
+            })
+            .collect();
+        data_array(&mut s, "Float64", "Points", 3, &f64_bytes(&pts));
+        s.push_str(&p[4]);
+        s
+    }
 }
 
 fn vtm_text(layout: &BlockLayout, subdir: &str) -> String {
@@ -769,7 +821,8 @@ pub struct MultiblockSeries {
     stem: String,
     layout: BlockLayout,
     names: NameTables,
-    nodes: NodeData,
+    /// The fixed part of every block's file, in layout order.
+    templates: Vec<BlockTemplate>,
     pvd: GrowingPvd,
     step: usize,
 }
@@ -811,6 +864,12 @@ impl MultiblockSeries {
         for w in &mesh.weights {
             weight[w.node] += w.weight;
         }
+        let nodes = NodeData { fixed, weight };
+        let templates = layout
+            .blocks
+            .iter()
+            .map(|b| BlockTemplate::new(mesh, b, &names, &nodes))
+            .collect();
         let pvd_path = dir.join(format!("{stem}.pvd"));
         // A `.pvd` left by an earlier run lists files that were just removed.
         let _ = std::fs::remove_file(&pvd_path);
@@ -824,7 +883,7 @@ impl MultiblockSeries {
             stem: stem.to_string(),
             layout,
             names,
-            nodes: NodeData { fixed, weight },
+            templates,
             step: 0,
         })
     }
@@ -849,25 +908,37 @@ impl MultiblockSeries {
         &self.pvd.entries
     }
 
+    /// Writes the blocks into `<dir>/<name>/`, then `<name>.vtm` (temporary name + rename: a
+    /// `.vtm` under its final name is always complete). On an error, what was written of the
+    /// step is removed again.
     fn write_vtm(
         &self,
-        mesh: &Mesh,
         name: &str,
         positions: &[Point3<f64>],
         time: Option<f64>,
         arrays: &StepArrays,
     ) -> Result<PathBuf> {
         let sub = self.dir.join(name);
-        std::fs::create_dir_all(&sub).map_err(|source| MeshError::Io {
-            path: sub.clone(),
-            source,
-        })?;
-        for b in &self.layout.blocks {
-            let text = block_vtu(mesh, b, positions, time, &self.names, &self.nodes, arrays);
-            write_replace(&sub.join(&b.file), text.as_bytes())?;
-        }
         let vtm = self.dir.join(format!("{name}.vtm"));
-        write_replace(&vtm, vtm_text(&self.layout, name).as_bytes())?;
+        let result = (|| {
+            std::fs::create_dir_all(&sub).map_err(|source| MeshError::Io {
+                path: sub.clone(),
+                source,
+            })?;
+            for (b, tpl) in self.layout.blocks.iter().zip(&self.templates) {
+                // Written in place: the block is reachable only through the `.vtm`, which is
+                // written after it.
+                let path = sub.join(&b.file);
+                let text = tpl.render(b, positions, time, arrays);
+                std::fs::write(&path, text).map_err(|source| MeshError::Io { path, source })?;
+            }
+            write_replace(&vtm, vtm_text(&self.layout, name).as_bytes())
+        })();
+        if let Err(e) = result {
+            let _ = std::fs::remove_file(&vtm);
+            let _ = std::fs::remove_dir_all(&sub);
+            return Err(e);
+        }
         Ok(vtm)
     }
 
@@ -903,11 +974,12 @@ impl MultiblockSeries {
     pub fn write_reference(&self, mesh: &Mesh) -> Result<PathBuf> {
         let empty = StepArrays::default();
         let name = format!("{}_reference", self.stem);
-        self.write_vtm(mesh, &name, &mesh.nodes, None, &empty)
+        self.write_vtm(&name, &mesh.nodes, None, &empty)
     }
 
     /// Writes one step at `time` [s] (after the previous step) and lists it in the `.pvd`.
-    /// Returns the `.vtm` path.
+    /// `mesh` is the mesh the series was made for (its block files' fixed parts were rendered
+    /// from it). Returns the `.vtm` path.
     pub fn write_step(
         &mut self,
         time: f64,
@@ -932,7 +1004,7 @@ impl MultiblockSeries {
         }
         self.check(mesh, positions, arrays)?;
         let name = format!("{}_{:06}", self.stem, self.step);
-        let vtm = self.write_vtm(mesh, &name, positions, Some(time), arrays)?;
+        let vtm = self.write_vtm(&name, positions, Some(time), arrays)?;
         self.pvd.add(time, format!("{name}.vtm"))?;
         self.step += 1;
         Ok(vtm)

@@ -165,6 +165,10 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<O
         tensions: Vec::new(),
     };
     let (record, result) = sim.run(&mut c);
+    // The buffered summary rows, also after an interruption or a failure.
+    if let Some(files) = &mut c.files {
+        files.flush()?;
+    }
     result?;
     if record.ending == aqua_sim::Ending::Interrupted {
         return Ok(None);

@@ -4,9 +4,12 @@
 //! (`open_in_paraview.py`), `summary.csv` (one row per output step) and `run.json` (resolved
 //! scene, name tables, final values, timing).
 //!
-//! Every file is written so that an interrupted run leaves it readable: block files and the
-//! `.vtm` are written to a temporary name and renamed, the `.pvd` lists a step only once its
-//! `.vtm` is complete, and `summary.csv` is flushed row by row.
+//! Every file is written so that an interrupted run leaves it readable: a step's block files
+//! are written first, then its `.vtm` (temporary name + rename), and only then is the step
+//! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
+//! for what holds when the process stops). `summary.csv` rows are buffered and flushed at
+//! least every [`CSV_FLUSH_INTERVAL`] of wall time and by [`RunFiles::flush`] (which the end
+//! of a run, an interruption or a failure calls, and dropping [`RunFiles`] does too).
 //!
 //! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
 //! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
@@ -28,6 +31,9 @@ use std::path::{Path, PathBuf};
 /// The pvpython script written next to every run (`DIR/open_in_paraview.py`).
 pub const PARAVIEW_SCRIPT: &str = include_str!("open_in_paraview.py");
 
+/// Longest wall time a `summary.csv` row stays in memory while a run goes on.
+pub const CSV_FLUSH_INTERVAL: std::time::Duration = std::time::Duration::from_secs(1);
+
 /// Writers of one run.
 #[derive(Debug)]
 pub struct RunFiles {
@@ -39,6 +45,8 @@ pub struct RunFiles {
     supported: Vec<i32>,
     csv: std::io::BufWriter<std::fs::File>,
     csv_path: PathBuf,
+    /// When `summary.csv` was last flushed.
+    csv_flushed: std::time::Instant,
     /// Output steps written.
     pub steps_written: usize,
 }
@@ -87,6 +95,7 @@ impl RunFiles {
             supported,
             csv,
             csv_path: path,
+            csv_flushed: std::time::Instant::now(),
             steps_written: 0,
         })
     }
@@ -169,11 +178,18 @@ impl RunFiles {
             .write_step(state.t, mesh, &positions, &arrays)
             .map_err(|e| SimError::Output(Box::new(e)))?;
         let line: Vec<String> = row.values_text();
-        writeln!(self.csv, "{}", line.join(","))
-            .and_then(|_| self.csv.flush())
-            .map_err(io("writing", &self.csv_path))?;
+        writeln!(self.csv, "{}", line.join(",")).map_err(io("writing", &self.csv_path))?;
         self.steps_written += 1;
+        if self.csv_flushed.elapsed() >= CSV_FLUSH_INTERVAL {
+            self.flush()?;
+        }
         Ok(())
+    }
+
+    /// Writes the buffered `summary.csv` rows to the file.
+    pub fn flush(&mut self) -> Result<()> {
+        self.csv_flushed = std::time::Instant::now();
+        self.csv.flush().map_err(io("writing", &self.csv_path))
     }
 
     /// Writes `run.json` atomically.

@@ -155,7 +155,10 @@ pub fn run_scene(
     let (mut record, result) = sim.run(&mut term);
     term.bar.finish_and_clear();
     record.wall = t0.elapsed().as_secs_f64();
-    let files = term.files;
+    let mut files = term.files;
+    // The summary rows still buffered: written whether the run completed, was interrupted or
+    // failed.
+    files.flush()?;
     print_step_control(&record);
     let mut json = run_json(&prep, &record, &result, &files);
     json["diagnostics"] = serde_json::json!(term.diagnostics);
