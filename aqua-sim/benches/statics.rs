@@ -6,36 +6,26 @@
 
 use aqua_env::Phase;
 use aqua_fem::solve_static;
-use aqua_hydro::assembly::LoadAssembly;
-use aqua_sim::build::{Built, build};
-use aqua_sim::provider::WaterLoads;
-use aqua_sim::scene::{Scene, parse_scene};
+use aqua_sim::plan::Prepared;
+use aqua_sim::run::water_loads;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-fn cage(element_length: f64) -> (Scene, Built) {
+/// The example at another element length, through the library's own `--set` path.
+fn cage(element_length: f64) -> Prepared {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/reference-cage.toml");
-    let text = std::fs::read_to_string(&path).expect("example").replace(
-        "element_length = 2.5",
-        &format!("element_length = {element_length}"),
-    );
-    let scene = parse_scene(&text, &path).expect("scene");
-    let built = build(&scene).expect("model");
-    (scene, built)
+    let set = [format!("element_length={element_length}")
+        .parse()
+        .expect("override")];
+    aqua_sim::prepare_with(&path, &set).expect("scene")
 }
 
 /// One static solve: (wall, Newton iterations).
-fn solve(scene: &Scene, built: &Built) -> (Duration, usize) {
-    let assembly = LoadAssembly::new(
-        built.sea.clone(),
-        built.model.n_nodes(),
-        built.elements.clone(),
-    )
-    .unwrap();
-    let mut loads = WaterLoads::new(assembly, Phase::Static, &built.elements);
+fn solve(prep: &Prepared) -> (Duration, usize) {
+    let (mut loads, _) = water_loads(prep, Phase::Static).expect("water loads");
     let t = Instant::now();
-    let sol = solve_static(&built.model, &mut loads, &scene.analysis.statics).expect("statics");
+    let sol = solve_static(&prep.built.model, &mut loads, &prep.plan.statics).expect("statics");
     (t.elapsed(), sol.report.iterations)
 }
 
@@ -44,23 +34,23 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     g.measurement_time(Duration::from_secs(30));
     for el in [10.0, 5.0, 2.5] {
-        let (scene, built) = cage(el);
-        let (d, it) = solve(&scene, &built);
+        let prep = cage(el);
+        let (d, it) = solve(&prep);
         eprintln!(
             "element_length {el} m: {} nodes, {it} Newton iterations, {:.2} s",
-            built.model.n_nodes(),
+            prep.built.model.n_nodes(),
             d.as_secs_f64()
         );
         g.bench_function(format!("element_length_{el}"), |b| {
-            b.iter_custom(|k| (0..k).map(|_| solve(&scene, &built).0).sum())
+            b.iter_custom(|k| (0..k).map(|_| solve(&prep).0).sum())
         });
     }
     g.finish();
-    let (scene, built) = cage(1.25);
-    let (d, it) = solve(&scene, &built);
+    let prep = cage(1.25);
+    let (d, it) = solve(&prep);
     eprintln!(
         "element_length 1.25 m: {} nodes, {it} Newton iterations, {:.2} s",
-        built.model.n_nodes(),
+        prep.built.model.n_nodes(),
         d.as_secs_f64()
     );
 }

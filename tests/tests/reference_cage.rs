@@ -106,8 +106,8 @@ fn static_history(out: &std::path::Path) -> (u64, Vec<f64>) {
 
 #[test]
 fn static_solve_of_the_cage_is_newton_not_relaxation() {
-    // docs/theory/fem.md#static-solver: 67 iterations at 10 m elements and 79 at 5 m (the
-    // pseudo-transient solver it replaced needed 138 and ~400; the first one 813). Bounds with
+    // docs/theory/fem.md#static-solver: 67 iterations at 10 m elements and 79 at 5 m (at 10 m
+    // the pseudo-transient solver it replaced needed 138, the first one 813). Bounds with
     // margin, so a regression to a relaxation fails.
     let dir = scratch("refcage-newton");
     for (el, bound) in [(10.0, 100), (5.0, 120)] {
