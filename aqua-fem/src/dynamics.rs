@@ -253,6 +253,10 @@ pub struct DynamicSolver<'m> {
 /// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
 /// HHT-α (α ≥ 0) only dissipates in linear problems; growth beyond round-off and the
 /// trapezoidal work of state-dependent loads means the step left the physics.
+/// The step-control reason (a key of [`StepControl::reasons`]) of a step rejected because it
+/// created energy (docs/theory/fem.md#step-control).
+pub const ENERGY_CREATED: &str = "the step created energy";
+
 pub const ENERGY_GROWTH_TOL: f64 = 0.01;
 
 /// The energy terms of one step (see `DynamicSolver::balance`).
@@ -687,7 +691,7 @@ impl<'m> DynamicSolver<'m> {
         let scale = e_old.max(e_new) + b.work_magnitude + self.f_floor * model.mean_length;
         if created > ENERGY_GROWTH_TOL * scale {
             return Some(format!(
-                "the step created energy ({created:.3e} J, {:.1} % of {scale:.3e} J)",
+                "{ENERGY_CREATED} ({created:.3e} J, {:.1} % of {scale:.3e} J)",
                 100.0 * created / scale
             ));
         }

@@ -86,8 +86,8 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, MassMatrix, StepControl,
-    StepEvent, StepReport,
+    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, MassMatrix,
+    StepControl, StepEvent, StepReport,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

@@ -304,7 +304,7 @@ fn energy_guard_warning(integrator: &Integrator, record: &RunRecord) -> Option<D
     let rejected: usize = control
         .reasons
         .iter()
-        .filter(|(why, _)| why.starts_with("the step created energy"))
+        .filter(|(why, _)| why == aqua_fem::ENERGY_CREATED)
         .map(|(_, n)| n)
         .sum();
     if rejected < 20 || (rejected as f64) < 0.02 * record.steps as f64 {
