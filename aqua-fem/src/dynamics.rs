@@ -232,6 +232,12 @@ pub struct DynamicSolver<'m> {
     lu_uses: usize,
     /// Numeric factorisations of the current attempt.
     attempt_factorisations: usize,
+    /// Iterations of the current attempt that used a factorisation formed before them
+    /// (modified Newton).
+    attempt_stale_solves: usize,
+    /// The next attempt uses full Newton: set after a modified-Newton attempt failed, so a
+    /// step is halved only when full Newton fails too.
+    full_newton: bool,
     /// Outputs of a converged attempt, for its guard.
     trial: Outputs,
     /// Halvings and regrowths so far.
@@ -441,6 +447,8 @@ impl<'m> DynamicSolver<'m> {
             lu_h: 0.0,
             lu_uses: 0,
             attempt_factorisations: 0,
+            attempt_stale_solves: 0,
+            full_newton: false,
             trial: Outputs::new(model),
             control: StepControl::default(),
             kinetic_free: 0.0,
@@ -738,6 +746,7 @@ impl<'m> DynamicSolver<'m> {
                 });
             match outcome {
                 Ok((iters, hist)) => {
+                    self.full_newton = false;
                     self.track_time_error(h);
                     self.clamp = false;
                     self.total_iterations += iters;
@@ -782,12 +791,18 @@ impl<'m> DynamicSolver<'m> {
                     retries += 1;
                     self.good_steps = 0;
                     self.lu_valid = false;
+                    if !self.full_newton && self.attempt_stale_solves > 0 {
+                        // Modified Newton failed: retry the same step with full Newton first.
+                        self.full_newton = true;
+                        continue;
+                    }
                     if !self.clamp && self.sys.cable.iter().any(|c| c.switch < 1.0) {
                         // Retry the same step with T ≥ 0 in the slack elements' geometric term.
                         self.clamp = true;
                         continue;
                     }
                     self.clamp = false;
+                    self.full_newton = false;
                     self.dt_cur = 0.5 * h.min(self.dt_cur);
                     self.control.record(t, h, self.dt_cur, &fail.reason);
                     if self.dt_cur < dt_min {
@@ -856,12 +871,17 @@ impl<'m> DynamicSolver<'m> {
         let wprev = 1.0 - wq;
         let o = self.opts(Some(coef), t_eval);
         let o_res = self.opts(None, t_eval);
-        let reuse = self.st.reuse_factor.max(1);
+        let reuse = if self.full_newton {
+            1
+        } else {
+            self.st.reuse_factor.max(1)
+        };
         if self.lu_h != h {
             self.lu_valid = false;
         }
         let mut rn_prev = f64::INFINITY;
         self.attempt_factorisations = 0;
+        self.attempt_stale_solves = 0;
         let xtol = 1e-6 * model.mean_length;
         let mut hist = Vec::new();
         let mut dx_prev = f64::INFINITY;
@@ -942,6 +962,9 @@ impl<'m> DynamicSolver<'m> {
                 self.lu_h = h;
                 self.lu_uses = 0;
                 self.attempt_factorisations += 1;
+            }
+            if !refactor {
+                self.attempt_stale_solves += 1;
             }
             self.lu_uses += 1;
             rn_prev = rn;

@@ -465,6 +465,29 @@ fn modified_newton_matches_full_newton() {
     assert!(err.to_string().contains("reuse_factor"), "{err}");
 }
 
+/// A failed modified-Newton attempt is retried with full Newton before the step is halved
+/// (docs/theory/fem.md#hht-alpha): on the swinging slack chain at steps where a stale
+/// factorisation does not contract, `reuse_factor = 8` must halve no more often than full Newton.
+#[test]
+fn modified_newton_halves_no_more_than_full_newton() {
+    let (m, _) = swinging_chain();
+    let halvings = |reuse: usize, dt: f64| {
+        let mut s = DynamicSettings::new(dt, 2.0);
+        s.reuse_factor = reuse;
+        let mut solver = DynamicSolver::new(&m, s, None, &mut NoLoads).unwrap();
+        solver.run(&mut NoLoads, |_, _| true).unwrap();
+        solver.step_control().halvings
+    };
+    for dt in [0.02, 0.05, 0.1] {
+        let (full, modified) = (halvings(1, dt), halvings(8, dt));
+        eprintln!("dt {dt}: halvings full {full}, modified {modified}");
+        assert!(
+            modified <= full,
+            "dt {dt}: modified Newton halved {modified}×, full {full}×"
+        );
+    }
+}
+
 /// The energy-consistent midpoint rule (docs/theory/fem.md#energy-consistent-midpoint) on a
 /// tension-only chain released horizontally: it swings, its elements go slack and taut again,
 /// and no energy may appear or vanish over 10⁴ steps, whatever the step. (HHT-α's trapezoidal
