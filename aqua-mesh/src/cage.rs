@@ -476,11 +476,8 @@ impl CageParams {
             CageType::Ccs => nn + n_ext,
             _ => nn + 1 + n_ext,
         };
-        let per_copy = nt * l
-            + 1
-            + nt * n_f
-            + usize::from(kind == CageType::Ccs)
-            + nt * (collar.pipes - 1);
+        let per_copy =
+            nt * l + 1 + nt * n_f + usize::from(kind == CageType::Ccs) + nt * (collar.pipes - 1);
         let total = per_copy.saturating_mul(origins.len());
         if total > MAX_NODES {
             return Err(MeshError::param(
@@ -768,7 +765,7 @@ impl ResolvedCage {
             .map(|i| (b.mesh.nodes[col(i + 1, 0)] - b.mesh.nodes[col(i, 0)]).norm())
             .sum();
         self.collar
-            .add_outer_pipe(&mut b, &inner, &outer, inner_length, &section)?;
+            .add_outer_pipe(&mut b, &inner, &outer, inner_length, section)?;
         let g_links = b.group("top_links", Role::TopLinks, Some(section("top_links")?));
         for i in 0..nt {
             b.add_line(g_links, net_id(i, 0), col(i, 0), None);

@@ -182,7 +182,9 @@ pub fn default_bracket_section() -> Section {
 /// brackets (C the inner pipe's length, b the bracket spacing), at most nt, at nodes
 /// round(k·nt/m), k = 0..m.
 pub fn bracket_nodes(nt: usize, inner_length: f64, spacing: f64) -> Vec<usize> {
-    let m = ((inner_length / spacing).round() as usize).clamp(3, nt.max(3)).min(nt);
+    let m = ((inner_length / spacing).round() as usize)
+        .clamp(3, nt.max(3))
+        .min(nt);
     let mut v: Vec<usize> = (0..m)
         .map(|k| ((k * nt) as f64 / m as f64).round() as usize % nt)
         .collect();

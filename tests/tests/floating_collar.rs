@@ -131,7 +131,8 @@ fn free_floating_collar_ring_settles_at_the_segment_draft() {
             "node {i}: draft {h_fe} m against {h} m"
         );
     }
-    assert!(iters <= 30, "{iters} Newton iterations");
+    // Measured: 9 iterations, worst relative draft error 2.9e-10.
+    assert!(iters <= 15, "{iters} Newton iterations");
 }
 
 #[test]
@@ -158,10 +159,13 @@ fn pinched_collar_ring_follows_thin_ring_theory() {
         (d_other / want_other - 1.0).abs() < 0.01,
         "other diameter {d_other} m against {want_other} m"
     );
-    assert!(iters <= 40, "{iters} Newton iterations");
+    // Measured: +0.27 % and −0.13 % (64 nodes), 11 iterations.
+    assert!(iters <= 20, "{iters} Newton iterations");
     // Without bending the same ring has no in-plane stiffness against the pinch: the static
     // solve either fails or lets the ring fold far beyond the bending answer.
-    let text = scene_text(&format!("{extra}\n[[group]]\nname = \"top_ring\"\nbending = false\n"));
+    let text = scene_text(&format!(
+        "{extra}\n[[group]]\nname = \"top_ring\"\nbending = false\n"
+    ));
     if let Ok((x, _, _, _)) = solve(&dir, "pinch-nobend", &text) {
         let d = (x[e][0] - x[w][0]) - 2.0 * R;
         assert!(d.abs() > 10.0 * want_loaded.abs(), "no bending: {d} m");
@@ -208,7 +212,10 @@ fn bad_pipe_and_bending_keys_name_the_key() {
     for (collar, key) in [
         ("collar.sdr = 2.0", "collar.sdr"),
         ("collar.wall_thickness = 0.2", "collar.wall_thickness"),
-        ("collar.sdr = 17.0\ncollar.wall_thickness = 0.02", "collar.sdr"),
+        (
+            "collar.sdr = 17.0\ncollar.wall_thickness = 0.02",
+            "collar.sdr",
+        ),
         ("collar.pipes = 3", "collar.pipes"),
     ] {
         let path = dir.join("cage.toml");

@@ -93,21 +93,22 @@ mod tests {
     use nalgebra::Point3;
 
     fn mesh(n_nodes: usize, lines: &[[usize; 2]]) -> Mesh {
-        let mut m = Mesh::default();
-        m.nodes = (0..n_nodes)
-            .map(|i| Point3::new(i as f64, 0.0, 0.0))
-            .collect();
-        m.lines = lines
-            .iter()
-            .map(|&nodes| LineElement {
-                nodes,
-                group: 0,
-                object: 0,
-                copy: 0,
-                rest_length: None,
-            })
-            .collect();
-        m
+        Mesh {
+            nodes: (0..n_nodes)
+                .map(|i| Point3::new(i as f64, 0.0, 0.0))
+                .collect(),
+            lines: lines
+                .iter()
+                .map(|&nodes| LineElement {
+                    nodes,
+                    group: 0,
+                    object: 0,
+                    copy: 0,
+                    rest_length: None,
+                })
+                .collect(),
+            ..Default::default()
+        }
     }
 
     #[test]
