@@ -206,6 +206,26 @@ mod tests {
         assert!((phi - 0.8044988905).abs() < 5e-11);
     }
 
+    /// ϕ·πR² is the circular segment A_sub(h) = R²·acos((R − h)/R) − (R − h)·√(2Rh − h²) of
+    /// docs/theory/farm.md#partially-submerged-circular-sections (h = ζ + R, the depth of the
+    /// lowest point), and dϕ/dζ·πR² is the wetted chord 2√(2Rh − h²); also for a horizontal
+    /// line element.
+    #[test]
+    fn section_is_the_circular_segment_law() {
+        let r = 0.175;
+        for k in 0..=20 {
+            let h = 2.0 * r * k as f64 / 20.0;
+            let a_sub = r * r * ((r - h) / r).acos() - (r - h) * (2.0 * r * h - h * h).sqrt();
+            let chord = 2.0 * (2.0 * r * h - h * h).max(0.0).sqrt();
+            let (phi, dphi) = section(h - r, r);
+            let area = PI * r * r;
+            assert!((phi * area - a_sub).abs() < 1e-15, "h = {h}: {phi}");
+            assert!((dphi * area - chord).abs() < 1e-13, "h = {h}: {dphi}");
+            let (phi_l, d) = line(h - r, h - r, r);
+            assert!((phi_l - phi).abs() < 1e-15 && (d[0] + d[1] - dphi).abs() < 1e-13);
+        }
+    }
+
     #[test]
     fn line_derivatives_match_finite_differences() {
         let r = 0.2;

@@ -5,6 +5,7 @@
 //! NN = round(H/el), BN = round(R_b/(√2·el)) (square: round(a/(√2·el))). Net node (i, ℓ) =
 //! origin + ρ_ℓ·u_i + z_ℓ·ẑ with id i·L + ℓ, L = NN + BN; tip id NT·L; then the rope columns.
 
+use crate::collar::{Collar, CollarParams, default_bracket_section};
 use crate::error::{MeshError, Result};
 use crate::mesh::{
     CageCounts, MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride,
@@ -95,6 +96,7 @@ impl CageType {
             "fixed",
             "net",
             "groups",
+            "collar",
         ];
         match t {
             CageType::Ssm => k.push("side"),
@@ -164,6 +166,9 @@ pub struct CageParams {
     /// `net.*`.
     #[serde(default)]
     pub net: NetParams,
+    /// `collar.*`: the floating collar's pipes (docs/theory/cages.md#collar).
+    #[serde(default)]
+    pub collar: CollarParams,
     /// `groups.<group>`: section overrides of line groups.
     #[serde(default)]
     pub groups: BTreeMap<String, SectionOverride>,
@@ -192,6 +197,7 @@ impl CageParams {
             tip_weight: None,
             fixed: None,
             net: NetParams::default(),
+            collar: CollarParams::default(),
             groups: BTreeMap::new(),
         }
     }
@@ -440,7 +446,8 @@ impl CageParams {
                 "coordinates must be finite numbers",
             ));
         }
-        let reach = r_t + f;
+        let collar = self.collar.resolve(obj)?;
+        let reach = r_t + f + collar.pipe_spacing;
         for (a, oa) in origins.iter().enumerate() {
             for (b, ob) in origins.iter().enumerate().skip(a + 1) {
                 let (dx, dy) = (ob[0] - oa[0], ob[1] - oa[1]);
@@ -469,7 +476,8 @@ impl CageParams {
             CageType::Ccs => nn + n_ext,
             _ => nn + 1 + n_ext,
         };
-        let per_copy = nt * l + 1 + nt * n_f + usize::from(kind == CageType::Ccs);
+        let per_copy =
+            nt * l + 1 + nt * n_f + usize::from(kind == CageType::Ccs) + nt * (collar.pipes - 1);
         let total = per_copy.saturating_mul(origins.len());
         if total > MAX_NODES {
             return Err(MeshError::param(
@@ -510,6 +518,7 @@ impl CageParams {
                 .unwrap_or_else(|| vec!["top_ring".to_string()]),
             groups: self.groups.clone(),
             net,
+            collar,
             notices,
         })
     }
@@ -569,6 +578,8 @@ pub struct ResolvedCage {
     pub groups: BTreeMap<String, SectionOverride>,
     /// Net parameters.
     pub net: NetResolved,
+    /// The collar's pipes.
+    pub collar: Collar,
     /// Notices so far.
     pub notices: Vec<String>,
 }
@@ -690,6 +701,11 @@ impl ResolvedCage {
                 origin + Vector3::new(0.0, 0.0, -self.depth - self.ext_depth),
             ))
         });
+        // Outer collar pipe (two-pipe collars): one node per column, further out.
+        let r_in = self.r_t + self.frame_offset;
+        let outer: Vec<usize> = (0..nt * (self.collar.pipes - 1))
+            .map(|i| b.add_node(self.collar.outer_point(origin, self.shape(i), r_in)))
+            .collect();
 
         // Net twines: rings, meridians, tip lines.
         let g_tw = b.group("net_twines", Role::NetTwines, None);
@@ -730,7 +746,11 @@ impl ResolvedCage {
 
         // Frame lines.
         let section = |name: &str| -> Result<Section> {
-            let mut s = default_frame_section(name).expect("frame group has a default section");
+            let mut s = match name {
+                "top_ring" | "outer_ring" => self.collar.section.clone(),
+                "brackets" => default_bracket_section(),
+                _ => default_frame_section(name).expect("frame group has a default section"),
+            };
             if let Some(o) = self.groups.get(name) {
                 o.apply(obj, &format!("groups.{name}"), &mut s)?;
             }
@@ -740,6 +760,12 @@ impl ResolvedCage {
         for i in 0..nt {
             b.add_line(g_ring, col(i, 0), col(i + 1, 0), None);
         }
+        let inner: Vec<usize> = (0..nt).map(|i| col(i, 0)).collect();
+        let inner_length = (0..nt)
+            .map(|i| (b.mesh.nodes[col(i + 1, 0)] - b.mesh.nodes[col(i, 0)]).norm())
+            .sum();
+        self.collar
+            .add_outer_pipe(&mut b, &inner, &outer, inner_length, section)?;
         let g_links = b.group("top_links", Role::TopLinks, Some(section("top_links")?));
         for i in 0..nt {
             b.add_line(g_links, net_id(i, 0), col(i, 0), None);

@@ -39,6 +39,7 @@
 //! z up, z = 0 at the still-water level.
 
 pub mod cage;
+pub mod collar;
 pub mod error;
 pub mod gmsh;
 pub mod line;
@@ -49,6 +50,7 @@ pub mod vtk;
 pub mod vtm;
 
 pub use cage::{CageParams, CageType, ResolvedCage};
+pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use line::{Fairlead, LineParams, LineShape};

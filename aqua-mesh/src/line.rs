@@ -88,6 +88,10 @@ pub struct LineParams {
     pub contact_diameter: Option<f64>,
     /// `material` label.
     pub material: Option<String>,
+    /// `ei` bending stiffness EI [N·m²] (docs/theory/fem.md#bending-of-sections).
+    pub ei: Option<f64>,
+    /// `bending` on/off (default: on for a pipe or when `ei` is given).
+    pub bending: Option<bool>,
 }
 
 fn finite3(obj: &str, key: &str, v: [f64; 3]) -> Result<Point3<f64>> {
@@ -330,6 +334,8 @@ impl LineParams {
             seabed: self.seabed,
             contact_diameter: self.contact_diameter,
             material: None,
+            ei: self.ei,
+            bending: self.bending,
         }
         .apply(obj, "", &mut section)?;
 

@@ -68,11 +68,15 @@ pub enum Role {
     PanelRight,
     /// A user node group from gmsh (`nodes:<name>`). Nodes.
     UserNodes,
+    /// Outer pipe of a two-pipe collar (docs/theory/cages.md#collar). Lines.
+    OuterRing,
+    /// Brackets joining the two pipes of a collar. Lines.
+    Brackets,
 }
 
 impl Role {
     /// All roles, in id order.
-    pub const ALL: [Role; 25] = [
+    pub const ALL: [Role; 27] = [
         Role::NetTwines,
         Role::NetPanels,
         Role::TopRing,
@@ -98,6 +102,8 @@ impl Role {
         Role::PanelLeft,
         Role::PanelRight,
         Role::UserNodes,
+        Role::OuterRing,
+        Role::Brackets,
     ];
 
     /// Stable numeric id (written to VTK `role_id`).
@@ -133,6 +139,8 @@ impl Role {
             Role::PanelLeft => "panel_left",
             Role::PanelRight => "panel_right",
             Role::UserNodes => "user_nodes",
+            Role::OuterRing => "outer_ring",
+            Role::Brackets => "brackets",
         }
     }
 
@@ -148,6 +156,8 @@ impl Role {
                 | Role::BottomRing
                 | Role::MooringLine
                 | Role::UserLines
+                | Role::OuterRing
+                | Role::Brackets
         )
     }
 
@@ -204,6 +214,11 @@ pub struct Section {
     pub seabed: bool,
     /// Seabed contact width [m]; `None` = `volume_diameter`.
     pub contact_diameter: Option<f64>,
+    /// Bending on/off (docs/theory/fem.md#bending-of-sections); `None` = automatic: on for a
+    /// pipe (`wall_thickness` set) or when `ei` is given, off for a solid section.
+    pub bending: Option<bool>,
+    /// Explicit bending stiffness EI [N·m²] overriding E·I.
+    pub ei: Option<f64>,
 }
 
 impl Section {
@@ -226,6 +241,8 @@ impl Section {
             initial_tension: 0.0,
             seabed: true,
             contact_diameter: None,
+            bending: None,
+            ei: None,
         }
     }
 
@@ -248,6 +265,8 @@ impl Section {
             initial_tension: 0.0,
             seabed: true,
             contact_diameter: None,
+            bending: None,
+            ei: None,
         }
     }
 
@@ -280,6 +299,33 @@ impl Section {
     pub fn linear_mass(&self) -> f64 {
         self.mass_per_length
             .unwrap_or(self.density * self.mass_area())
+    }
+
+    /// Second moment of area of the stiffness section [m⁴]: π/64·d_e⁴ (solid) or
+    /// π/64·(D⁴ − (D − 2t)⁴) (pipe), with d_e = `elastic_diameter`.
+    pub fn second_moment(&self) -> f64 {
+        let d = self.elastic_diameter;
+        let c = std::f64::consts::PI / 64.0;
+        match self.wall_thickness {
+            Some(t) => c * (d.powi(4) - (d - 2.0 * t).max(0.0).powi(4)),
+            None => c * d.powi(4),
+        }
+    }
+
+    /// True if the group bends: `bending` if set, otherwise on for pipes and when `ei` is
+    /// given (docs/theory/fem.md#bending-of-sections).
+    pub fn bends(&self) -> bool {
+        self.bending
+            .unwrap_or(self.wall_thickness.is_some() || self.ei.is_some())
+    }
+
+    /// Bending stiffness EI [N·m²]: 0 if the section does not bend, else `ei` or E·I.
+    pub fn bending_stiffness(&self) -> f64 {
+        if !self.bends() {
+            return 0.0;
+        }
+        self.ei
+            .unwrap_or(self.youngs_modulus * self.second_moment())
     }
 }
 
@@ -905,6 +951,10 @@ pub struct SectionOverride {
     pub contact_diameter: Option<f64>,
     /// `material` label.
     pub material: Option<String>,
+    /// `ei`: bending stiffness EI [N·m²] (≥ 0; switches bending on unless `bending = false`).
+    pub ei: Option<f64>,
+    /// `bending`: bending hinges on/off (default: on for pipes and when `ei` is given).
+    pub bending: Option<bool>,
 }
 
 impl SectionOverride {
@@ -948,12 +998,16 @@ impl SectionOverride {
             s.volume_diameter = d;
         }
         if let Some(t) = pos("wall_thickness", self.wall_thickness)? {
-            if 2.0 * t > s.diameter {
+            if 2.0 * t >= s.diameter {
                 return Err(MeshError::param(
                     object,
                     &key("wall_thickness"),
                     t,
-                    format!("must be <= diameter/2 = {}", s.diameter / 2.0),
+                    format!(
+                        "must be < diameter/2 = {} m (a pipe wall thinner than the radius; \
+                         leave wall_thickness out for a solid section)",
+                        s.diameter / 2.0
+                    ),
                 ));
             }
             s.wall_thickness = Some(t);
@@ -1007,6 +1061,21 @@ impl SectionOverride {
         }
         if let Some(m) = &self.material {
             s.material = m.clone();
+        }
+        if let Some(v) = nonneg("ei", self.ei)? {
+            if self.bending == Some(false) {
+                return Err(MeshError::param(
+                    object,
+                    &key("ei"),
+                    v,
+                    "is given together with `bending = false`; give `ei` to bend with that \
+                     stiffness, or `bending = false` alone for no bending",
+                ));
+            }
+            s.ei = Some(v);
+        }
+        if let Some(v) = self.bending {
+            s.bending = Some(v);
         }
         Ok(())
     }

@@ -103,6 +103,8 @@ impl NetGrouping {
             initial_tension: 0.0,
             seabed: true,
             contact_diameter: None,
+            bending: None,
+            ei: None,
         }
     }
 }

@@ -5,6 +5,7 @@
 //! the structure's top), `build_structure` (aqua-fem model), `build_water_loads` (aqua-hydro
 //! elements) and [`find_line_ends`] (what the outputs report per `[[line]]`).
 
+mod bending;
 mod mesh;
 mod structure;
 mod water;

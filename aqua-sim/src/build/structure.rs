@@ -77,6 +77,7 @@ pub(super) fn build_structure(
     }
     let (sections, group_names) = cable_groups(scene, mesh, &mut b)?;
     add_cables(&file, mesh, &sections, &mut b)?;
+    super::bending::add_hinges(&file, mesh, &sections, &mut b)?;
     // Sinkers and weights of the builders hang as point masses W/g
     // (docs/theory/cages.md#frame-ropes-and-weights).
     for w in &mesh.weights {
