@@ -92,6 +92,50 @@ pub struct SeabedSpec {
     /// c_b [Pa·s/m] (default 3e5).
     #[serde(default = "default_cbot")]
     pub cbot: f64,
+    /// Axial seabed friction coefficient μ_a, along the line (default 0: no friction;
+    /// docs/theory/fem.md#seabed-friction).
+    #[serde(default)]
+    pub friction_axial: f64,
+    /// Transverse seabed friction coefficient μ_t (default: `friction_axial`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_transverse: Option<f64>,
+    /// Slip velocity v_c of the regularised friction [m/s] (default 1e-2).
+    #[serde(default = "default_slip_velocity")]
+    pub slip_velocity: f64,
+}
+
+impl SeabedSpec {
+    /// μ_t: `friction_transverse`, or `friction_axial` when it is not given.
+    pub fn transverse_friction(&self) -> f64 {
+        self.friction_transverse.unwrap_or(self.friction_axial)
+    }
+
+    /// Checks the friction keys: μ ≥ 0 and v_c > 0, finite.
+    fn validate_friction(&self) -> Result<(), EnvError> {
+        let mut mus = vec![("sea.seabed.friction_axial", self.friction_axial)];
+        if let Some(mu) = self.friction_transverse {
+            mus.push(("sea.seabed.friction_transverse", mu));
+        }
+        for (key, mu) in mus {
+            if !(mu >= 0.0 && mu.is_finite()) {
+                return Err(EnvError::range(
+                    key,
+                    mu,
+                    "a friction coefficient, finite and >= 0 (0 = no friction; chain on sand \
+                     about 0.7 axial, 1.0 transverse)",
+                ));
+            }
+        }
+        let vc = self.slip_velocity;
+        if !(vc > 0.0 && vc.is_finite()) {
+            return Err(EnvError::range(
+                "sea.seabed.slip_velocity",
+                vc,
+                "a velocity in m/s, finite and > 0 (default 0.01)",
+            ));
+        }
+        Ok(())
+    }
 }
 
 fn default_kbot() -> f64 {
@@ -100,12 +144,18 @@ fn default_kbot() -> f64 {
 fn default_cbot() -> f64 {
     3e5
 }
+fn default_slip_velocity() -> f64 {
+    1e-2
+}
 
 impl Default for SeabedSpec {
     fn default() -> Self {
         Self {
             kbot: default_kbot(),
             cbot: default_cbot(),
+            friction_axial: 0.0,
+            friction_transverse: None,
+            slip_velocity: default_slip_velocity(),
         }
     }
 }
@@ -682,6 +732,7 @@ impl SeaSpec {
                 return Err(EnvError::range(key, v, "a finite number >= 0"));
             }
         }
+        self.seabed.validate_friction()?;
         let current = self.build_current(&c)?;
         let mut warnings = Vec::new();
         let w = &self.waves;

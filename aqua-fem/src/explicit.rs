@@ -260,7 +260,8 @@ impl<'m> ExplicitSolver<'m> {
                     let f = self.sys.free_of_dof[3 * i + k];
                     (f != crate::system::NONE).then(|| c_rows[f])
                 })
-                .fold(0.0, f64::max);
+                .fold(0.0, f64::max)
+                + self.sys.friction_spare_damping(i);
             if c > 0.0 {
                 dt = dt.min(2.0 * m / c);
             }

@@ -24,6 +24,9 @@
 //!   exact 9×9 tangent; rotation invariant, torsion neglected.
 //! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
 //! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
+//! * Seabed friction in dynamics (regularised Coulomb, docs/theory/fem.md#seabed-friction):
+//!   f_a = −μ_a·N·clamp(v_a/v_c, −1, 1) along the horizontal line direction, f_t likewise with
+//!   μ_t across it; omitted in statics.
 //! * Water loads f_h(t, x, v) and their Jacobians −∂f_h/∂v (damping) and −∂f_h/∂x (stiffness)
 //!   from the provider, finite differences element by element when a derivative is missing.
 //!
@@ -77,6 +80,7 @@ mod cable;
 pub mod dynamics;
 pub mod error;
 pub mod explicit;
+pub mod friction;
 pub mod loads;
 pub mod model;
 pub mod motion;
@@ -91,6 +95,7 @@ pub use dynamics::{
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
+pub use friction::{DEFAULT_SLIP_VELOCITY, SeabedFriction};
 pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};
 pub use model::{
     AxialDamping, Cable, CableSection, DEFAULT_COMPRESSION_RATIO, DEFAULT_GRAVITY,

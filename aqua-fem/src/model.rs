@@ -2,6 +2,7 @@
 
 use crate::bending::Hinge;
 use crate::error::{FemError, Result, invalid};
+use crate::friction::SeabedFriction;
 use crate::motion::{Motion, check_finite3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -22,16 +23,26 @@ pub struct Seabed {
     pub stiffness: f64,
     /// Normal damping c_b per unit contact area [Pa·s/m]. Default 3e5.
     pub damping: f64,
+    /// Regularised Coulomb friction (docs/theory/fem.md#seabed-friction). Default off.
+    #[serde(default)]
+    pub friction: SeabedFriction,
 }
 
 impl Seabed {
-    /// Seabed at depth [m] with the default stiffness and damping.
+    /// Seabed at depth [m] with the default stiffness and damping, no friction.
     pub fn new(depth: f64) -> Self {
         Self {
             depth,
             stiffness: 3e6,
             damping: 3e5,
+            friction: SeabedFriction::default(),
         }
+    }
+
+    /// Sets the friction.
+    pub fn with_friction(mut self, friction: SeabedFriction) -> Self {
+        self.friction = friction;
+        self
     }
 }
 
@@ -516,6 +527,7 @@ impl ModelBuilder {
             if !(s.damping.is_finite() && s.damping >= 0.0) {
                 return Err(invalid("seabed cbot [Pa s/m]", s.damping, ">= 0"));
             }
+            s.friction.validate()?;
         }
         if self.nodes.is_empty() {
             return Err(FemError::InvalidModel("the model has no nodes".into()));

@@ -5,6 +5,7 @@
 use crate::bending::{self, HingeEval};
 use crate::cable::{self, CableEval};
 use crate::error::{FemError, Result};
+use crate::friction::{self, Normal};
 use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
 use crate::model::Model;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -97,6 +98,16 @@ pub(crate) struct System {
     bed_kz: Vec<f64>,
     /// −∂f_bed,z/∂v_z of the last evaluation [N·s/m].
     bed_cz: Vec<f64>,
+    /// Cable elements at each node for the friction's line direction: up to two, `NONE`
+    /// padded; `None` for a junction of three or more (docs/theory/fem.md#seabed-friction).
+    node_lines: Vec<Option<[usize; 2]>>,
+    /// Seabed friction of the last evaluation: −∂f/∂x and −∂f/∂v per node (rows x, y).
+    fric_k: Vec<[[f64; 3]; 3]>,
+    fric_c: Vec<[[f64; 3]; 3]>,
+    /// Friction damping μN/v_c outside the linear zone per node (explicit stable step) [N·s/m].
+    fric_spare: Vec<f64>,
+    /// Friction acted in the last evaluation.
+    friction_on: bool,
     /// q = f_int − f_ext [N].
     pub q: Vec<[f64; 3]>,
     /// M·a (structural + added mass) [N].
@@ -277,6 +288,16 @@ impl System {
             load_pos_off.push(load_pos.len());
         }
         let diag_pos = (0..nf).map(|f| pos_in(&col_ptr, &row_idx, f, f)).collect();
+        let mut node_lines = vec![Some([NONE; 2]); n];
+        for (ie, e) in model.elements().iter().enumerate() {
+            for nd in [e.a, e.b] {
+                node_lines[nd] = match node_lines[nd] {
+                    Some([NONE, _]) => Some([ie, NONE]),
+                    Some([f, NONE]) => Some([f, ie]),
+                    _ => None,
+                };
+            }
+        }
         let load_stride = 12 * max_nn + 9 * max_nn * max_nn;
         let nnz = row_idx.len();
         Ok(Self {
@@ -303,6 +324,11 @@ impl System {
             fbed: vec![[0.0; 3]; n],
             bed_kz: vec![0.0; n],
             bed_cz: vec![0.0; n],
+            node_lines,
+            fric_k: vec![[[0.0; 3]; 3]; n],
+            fric_c: vec![[[0.0; 3]; 3]; n],
+            fric_spare: vec![0.0; n],
+            friction_on: false,
             q: vec![[0.0; 3]; n],
             ma: vec![[0.0; 3]; n],
             mv: vec![[0.0; 3]; n],
@@ -518,6 +544,7 @@ impl System {
                 self.bed_kz[i] += kp;
             }
         }
+        self.seabed_friction(model, x, v, o.dynamic);
         let a_m = if o.dynamic { o.rayleigh.0 } else { 0.0 };
         for i in 0..n {
             for k in 0..3 {
@@ -641,6 +668,17 @@ impl System {
             if pz != NONE {
                 vals[pz] += cf.k * self.bed_kz[i] + cf.c * self.bed_cz[i];
             }
+            if self.friction_on {
+                let (fk, fc) = (&self.fric_k[i], &self.fric_c[i]);
+                for ki in 0..2 {
+                    for kj in 0..3 {
+                        let pp = p[3 * ki + kj];
+                        if pp != NONE {
+                            vals[pp] += cf.k * fk[ki][kj] + cf.c * fc[ki][kj];
+                        }
+                    }
+                }
+            }
         }
         // Load elements: stored block is already −scale·(k·dfdx + c·dfdv).
         for e in 0..self.load_nn.len() {
@@ -655,6 +693,62 @@ impl System {
             }
             debug_assert_eq!(pos.len(), nd * nd);
         }
+    }
+
+    /// Regularised Coulomb friction of the nodes in contact (dynamics only), from the normal
+    /// force N = f_bed,z just formed, added to `fbed` (docs/theory/fem.md#seabed-friction).
+    fn seabed_friction(&mut self, model: &Model, x: &[[f64; 3]], v: &[[f64; 3]], dynamic: bool) {
+        let params = match model.env.seabed {
+            Some(s) if dynamic && s.friction.is_active() => s.friction,
+            _ => {
+                if self.friction_on {
+                    self.fric_spare.iter_mut().for_each(|c| *c = 0.0);
+                }
+                self.friction_on = false;
+                return;
+            }
+        };
+        self.friction_on = true;
+        let elements = model.elements();
+        for i in 0..self.n_nodes {
+            let n = Normal {
+                force: self.fbed[i][2],
+                kz: self.bed_kz[i],
+                cz: self.bed_cz[i],
+            };
+            if !(n.force > 0.0) {
+                self.fric_k[i] = [[0.0; 3]; 3];
+                self.fric_c[i] = [[0.0; 3]; 3];
+                self.fric_spare[i] = 0.0;
+                continue;
+            }
+            let axis = self.node_lines[i].and_then(|lines| {
+                let mut dirs = [[0.0; 3]; 2];
+                let mut m = 0;
+                for &ie in lines.iter().filter(|&&ie| ie != NONE) {
+                    let e = &elements[ie];
+                    let d = sub(x[e.b], x[e.a]);
+                    let l = norm(d);
+                    if l > 0.0 {
+                        dirs[m] = [d[0] / l, d[1] / l, d[2] / l];
+                        m += 1;
+                    }
+                }
+                friction::line_axis(&dirs[..m])
+            });
+            let nf = friction::node_friction(&params, n, v[i], axis);
+            self.fbed[i][0] += nf.force[0];
+            self.fbed[i][1] += nf.force[1];
+            self.fric_k[i] = nf.k;
+            self.fric_c[i] = nf.c;
+            self.fric_spare[i] = nf.spare_c;
+        }
+    }
+
+    /// Seabed friction damping μN/v_c that the last evaluation's Jacobian left out at node
+    /// `i` because the node slid faster than v_c (it returns when the node slows down) [N·s/m].
+    pub fn friction_spare_damping(&self, i: usize) -> f64 {
+        self.fric_spare[i]
     }
 
     /// Evaluates the bending hinges at `x` (docs/theory/fem.md#bending); in the energy-consistent

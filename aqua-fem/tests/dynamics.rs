@@ -576,6 +576,7 @@ fn midpoint_keeps_the_energy_through_seabed_impacts() {
             depth,
             stiffness: k_b,
             damping: 0.0,
+            friction: SeabedFriction::default(),
         }),
         ..Default::default()
     };

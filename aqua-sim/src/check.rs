@@ -189,6 +189,7 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
                 "no finite water depth: no seabed".into()
             },
         },
+        seabed_friction(built, dynamic, seabed && seabed_groups > 0),
         Physics {
             name: "dynamics",
             active: dynamic,
@@ -260,5 +261,31 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         estimated_static_seconds: estimated_static,
         estimated_dynamic_seconds: estimated_dynamic,
         estimated_seconds: estimated_static + estimated_dynamic,
+    }
+}
+
+/// The seabed-friction line of `aqua check` (docs/theory/fem.md#seabed-friction).
+fn seabed_friction(built: &Built, dynamic: bool, contact: bool) -> Physics {
+    let friction = built
+        .model
+        .environment()
+        .seabed
+        .map(|s| s.friction)
+        .unwrap_or_default();
+    Physics {
+        name: "seabed friction",
+        active: friction.is_active() && contact && dynamic,
+        why: if !friction.is_active() {
+            "sea.seabed.friction_axial = 0: frictionless bed".into()
+        } else if !contact {
+            "no seabed contact: no friction".into()
+        } else if !dynamic {
+            "static analysis: friction is omitted in statics".into()
+        } else {
+            format!(
+                "regularised Coulomb, mu_a = {}, mu_t = {}, v_c = {} m/s (dynamics only)",
+                friction.axial, friction.transverse, friction.slip_velocity
+            )
+        },
     }
 }

@@ -7,7 +7,7 @@
 //!
 //! ```toml
 //! name = "reference-cage" # optional; default: the file stem
-//! [sea]                   # aqua-env (README.md#scene-sea-table), plus [sea.seabed] kbot, cbot
+//! [sea]                   # aqua-env (README.md#scene-sea-table), plus [sea.seabed] kbot, cbot, friction
 //! [[cage]]                # aqua-mesh CageParams (cages.md#cage-parameters) + net.* hydro keys
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys

@@ -9,7 +9,7 @@ use crate::scene::{GroupSpec, Located, MotionKind, PrescribedSpec, Scene};
 use aqua_env::{Constants, Depth};
 use aqua_fem::{
     AxialDamping, CableSection, Dofs, Environment, ExternalMotion, GroupId, ModelBuilder, Motion,
-    PointBody, Seabed, UnstretchedLength,
+    PointBody, Seabed, SeabedFriction, UnstretchedLength,
 };
 use aqua_hydro::PointProps;
 use aqua_hydro::assembly::PointElement;
@@ -55,6 +55,11 @@ pub(super) fn environment(scene: &Scene, constants: &Constants) -> Environment {
                 depth: h,
                 stiffness: scene.sea.seabed.kbot,
                 damping: scene.sea.seabed.cbot,
+                friction: SeabedFriction {
+                    axial: scene.sea.seabed.friction_axial,
+                    transverse: scene.sea.seabed.transverse_friction(),
+                    slip_velocity: scene.sea.seabed.slip_velocity,
+                },
             }),
             Depth::Infinite => None,
         },
