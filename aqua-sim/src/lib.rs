@@ -24,7 +24,9 @@
 //! text; warnings are [`Diagnostic`]s.
 
 pub mod build;
+pub mod buoy;
 pub mod check;
+pub mod design;
 pub mod coupling;
 pub mod diagnostic;
 pub mod error;
