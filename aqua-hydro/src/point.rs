@@ -165,7 +165,10 @@ mod tests {
             let seg = r * r * ((r - h) / r).acos() - (r - h) * (2.0 * r * h - h * h).sqrt();
             let u = 0.7;
             let l = point(&p, zeta, V3::new(u, 0.0, 0.0), V3::zeros(), rho, g, want);
-            assert!((l.force.z - rho * g * cap).abs() < 1e-9 * rho * g * v, "{zeta}");
+            assert!(
+                (l.force.z - rho * g * cap).abs() < 1e-9 * rho * g * v,
+                "{zeta}"
+            );
             assert!((l.dfdx[(2, 2)] + rho * g * waterplane).abs() < 1e-9 * rho * g * r * r);
             let drag = 0.5 * rho * 0.5 * seg * u * u;
             assert!((l.force.x - drag).abs() < 1e-9 * rho, "{zeta}");

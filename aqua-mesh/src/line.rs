@@ -283,7 +283,9 @@ fn element_count(
         )),
         (Some(s), None) if s >= 1 => Ok(s as usize),
         (Some(s), None) => Err(MeshError::param(obj, count_key, s, "must be >= 1")),
-        (None, Some(el)) if el.is_finite() && el > 0.0 => Ok((length / el).round().max(1.0) as usize),
+        (None, Some(el)) if el.is_finite() && el > 0.0 => {
+            Ok((length / el).round().max(1.0) as usize)
+        }
         (None, Some(el)) => Err(MeshError::param(
             obj,
             el_key,
@@ -780,7 +782,10 @@ mod tests {
         let mut p = chain_then_rope();
         p.length = 150.0;
         let e = p.build().unwrap_err().to_string();
-        assert!(e.contains("`length`") && e.contains("[[line.segment]]"), "{e}");
+        assert!(
+            e.contains("`length`") && e.contains("[[line.segment]]"),
+            "{e}"
+        );
         let mut p = chain_then_rope();
         p.segment[1].name = Some("chain".into());
         let e = p.build().unwrap_err().to_string();

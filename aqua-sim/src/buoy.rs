@@ -115,9 +115,11 @@ impl BuoySpec {
     pub fn resolve(&self) -> Result<Buoy, String> {
         match (&self.position, &self.node) {
             (Some(_), Some(_)) => {
-                return Err("both `position` and `node` given: a buoy is either a new node at \
+                return Err(
+                    "both `position` and `node` given: a buoy is either a new node at \
                             `position` or sits on the nodes `node` names; give one"
-                    .into());
+                        .into(),
+                );
             }
             (None, None) => {
                 return Err("give `position = [x, y, z]` (a new free node) or `node = \
@@ -154,10 +156,14 @@ impl BuoySpec {
         match (self.diameter, self.volume) {
             (Some(_), Some(_)) => Err("both `diameter` and `volume` given; give one".into()),
             (None, None) => Err(ZERO_VOLUME.into()),
-            (Some(d), None) if d == 0.0 => Err(format!("diameter = 0: {ZERO_VOLUME}")),
-            (None, Some(v)) if v == 0.0 => Err(format!("volume = 0: {ZERO_VOLUME}")),
-            (Some(d), None) => Ok((Some(positive("diameter", d)?), None)),
-            (None, Some(v)) => Ok((None, Some(positive("volume", v)?))),
+            (Some(d), None) => match d {
+                0.0 => Err(format!("diameter = 0: {ZERO_VOLUME}")),
+                _ => Ok((Some(positive("diameter", d)?), None)),
+            },
+            (None, Some(v)) => match v {
+                0.0 => Err(format!("volume = 0: {ZERO_VOLUME}")),
+                _ => Ok((None, Some(positive("volume", v)?))),
+            },
         }
     }
 
@@ -318,6 +324,10 @@ mod tests {
         let mut s = at(BuoyShape::Point);
         s.mass = 5.0;
         s.node = Some("a/b".into());
-        assert!(s.resolve().unwrap_err().contains("both `position` and `node`"));
+        assert!(
+            s.resolve()
+                .unwrap_err()
+                .contains("both `position` and `node`")
+        );
     }
 }

@@ -105,7 +105,12 @@ impl DesignChecks {
     /// `design/float-on-seabed`, else `design/sunk-float`, for one floater.
     fn floater(&self, f: &Floater, x: &[[f64; 3]]) -> Option<Diagnostic> {
         let half = 0.5 * f.size;
-        let z: Vec<f64> = f.nodes.iter().filter_map(|&n| x.get(n)).map(|p| p[2]).collect();
+        let z: Vec<f64> = f
+            .nodes
+            .iter()
+            .filter_map(|&n| x.get(n))
+            .map(|p| p[2])
+            .collect();
         let lowest = z.iter().copied().fold(f64::INFINITY, f64::min);
         if let Some(zb) = self.seabed_z {
             // The penalty contact lets a body sink slightly into the bed.
@@ -189,10 +194,18 @@ mod tests {
         };
         // taut as built: 10.05 m apart; slack: 10 m apart
         let p = |x: [f64; 3]| Point3::from(x);
-        let taut = [p([0.0, 0.0, -20.0]), p([6.03, 0.0, -11.96]), p([6.0, 0.0, 0.0])];
+        let taut = [
+            p([0.0, 0.0, -20.0]),
+            p([6.03, 0.0, -11.96]),
+            p([6.0, 0.0, 0.0]),
+        ];
         let built: Vec<_> = c.as_built(&taut).iter().map(|d| d.code).collect();
         assert_eq!(built, vec!["design/taut-line"]);
-        let slack = [p([0.0, 0.0, -20.0]), p([6.0, 0.0, -12.0]), p([6.0, 0.0, 0.0])];
+        let slack = [
+            p([0.0, 0.0, -20.0]),
+            p([6.0, 0.0, -12.0]),
+            p([6.0, 0.0, 0.0]),
+        ];
         assert!(c.as_built(&slack).is_empty());
         // buoy floating
         assert!(codes(&[[0.0, 0.0, -20.0], [6.0, 0.0, -12.0], [6.0, 0.0, 0.0]]).is_empty());
@@ -209,6 +222,9 @@ mod tests {
         );
         let mut c2 = checks();
         c2.floaters[0].submerged = true;
-        assert!(c2.at_equilibrium(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -5.0]]).is_empty());
+        assert!(
+            c2.at_equilibrium(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -5.0]])
+                .is_empty()
+        );
     }
 }

@@ -26,8 +26,8 @@
 pub mod build;
 pub mod buoy;
 pub mod check;
-pub mod design;
 pub mod coupling;
+pub mod design;
 pub mod diagnostic;
 pub mod error;
 pub mod files;

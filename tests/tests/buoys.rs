@@ -83,7 +83,11 @@ fn free_sphere_floats_at_the_cap_height() {
     let z = cap_out.x[0][2];
     assert!((z - (r - h)).abs() < 1e-6 * d, "z = {z}, exact {}", r - h);
     assert!(iterations <= 30, "{iterations} static iterations");
-    assert!(cap_out.codes.iter().all(|c| !c.starts_with("design/")), "{:?}", cap_out.codes);
+    assert!(
+        cap_out.codes.iter().all(|c| !c.starts_with("design/")),
+        "{:?}",
+        cap_out.codes
+    );
 }
 
 #[test]
@@ -104,9 +108,8 @@ fn sphere_on_a_vertical_tether_floats_where_the_balance_says() {
     // its length is le·(1 + T_i/EA); the buoy node balances ρ g V_cap = m g + w le/2 + T_n.
     let le = l0 / n as f64;
     let w = (mu - RHO * PI * dr * dr / 4.0) * G;
-    let z_top = |t: f64| {
-        -20.0 + l0 + le / ea * (n as f64 * t - w * le * (n * (n - 1)) as f64 / 2.0)
-    };
+    let z_top =
+        |t: f64| -20.0 + l0 + le / ea * (n as f64 * t - w * le * (n * (n - 1)) as f64 / 2.0);
     let t = bisect(
         |t| m * G + w * le / 2.0 + t - RHO * G * cap(r - z_top(t), r),
         0.0,
@@ -121,7 +124,11 @@ fn sphere_on_a_vertical_tether_floats_where_the_balance_says() {
     // Partly submerged, with the rope taut.
     assert!(z > -r && z < r && t > 1000.0, "{z} {t}");
     assert!(iterations <= 40, "{iterations} static iterations");
-    assert!(out.codes.iter().all(|c| !c.starts_with("design/")), "{:?}", out.codes);
+    assert!(
+        out.codes.iter().all(|c| !c.starts_with("design/")),
+        "{:?}",
+        out.codes
+    );
 }
 
 /// (H, V_A) of a fully suspended elastic line of segments (L_k, w_k, EA_k) from an anchor to
@@ -144,7 +151,10 @@ fn elastic_catenary(segs: &[(f64, f64, f64)], l: f64, h: f64) -> (f64, f64) {
         let e = 1e-7 * hh;
         let (a0, a1) = span(hh + e, va);
         let (b0, b1) = span(hh, va + e);
-        let j = [[(a0 - f0) / e, (b0 - f0) / e], [(a1 - f1) / e, (b1 - f1) / e]];
+        let j = [
+            [(a0 - f0) / e, (b0 - f0) / e],
+            [(a1 - f1) / e, (b1 - f1) / e],
+        ];
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         hh -= (f0 * j[1][1] - f1 * j[0][1]) / det;
         va -= (j[0][0] * f1 - j[1][0] * f0) / det;
@@ -182,7 +192,11 @@ fn chain_then_rope_matches_the_two_segment_elastic_catenary() {
     let weight = wc * 40.0 + wr * 60.0;
     assert!((vz / weight - 1.0).abs() < 1e-6, "{vz} vs {weight}");
     assert!(iterations <= 120, "{iterations} static iterations");
-    assert!(out.codes.iter().all(|c| !c.starts_with("design/")), "{:?}", out.codes);
+    assert!(
+        out.codes.iter().all(|c| !c.starts_with("design/")),
+        "{:?}",
+        out.codes
+    );
 }
 
 #[test]
@@ -202,26 +216,28 @@ fn a_buoy_at_the_joint_lifts_the_line_by_its_buoyancy() {
     let vz = out.reaction[anchor][2] + out.reaction[fair][2];
     let weight = wc * 40.0 + wr * 60.0 + buoy;
     assert!((vz / weight - 1.0).abs() < 1e-6, "{vz} vs {weight}");
-    assert!(out.codes.iter().all(|c| !c.starts_with("design/")), "{:?}", out.codes);
+    assert!(
+        out.codes.iter().all(|c| !c.starts_with("design/")),
+        "{:?}",
+        out.codes
+    );
 }
 
 fn example(name: &str) -> String {
-    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(name))
-        .unwrap()
+    std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../examples")
+            .join(name),
+    )
+    .unwrap()
 }
 
 #[test]
 fn the_moored_cage_sinks_its_collar_and_is_told_so() {
-    let text = example("moored-cage.toml").replace(
-        "kind = \"static+dynamic\"",
-        "kind = \"static\"",
-    );
+    let text =
+        example("moored-cage.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
     let (out, _) = statics(&text);
-    assert!(
-        out.codes.contains(&"design/sunk-float"),
-        "{:?}",
-        out.codes
-    );
+    assert!(out.codes.contains(&"design/sunk-float"), "{:?}", out.codes);
 }
 
 #[test]
@@ -237,11 +253,19 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
         .filter(|d| d.code == "design/taut-line")
         .collect();
     assert_eq!(taut.len(), 1);
-    assert!(taut[0].message.contains("50.000 m apart"), "{}", taut[0].message);
+    assert!(
+        taut[0].message.contains("50.000 m apart"),
+        "{}",
+        taut[0].message
+    );
     let ok = text.replace("49.9", "50.1");
     let scene = parse_scene(&ok, Path::new("taut.toml")).unwrap();
     let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
-    assert!(prep.diagnostics().iter().all(|d| d.code != "design/taut-line"));
+    assert!(
+        prep.diagnostics()
+            .iter()
+            .all(|d| d.code != "design/taut-line")
+    );
 }
 
 fn error_of(text: &str) -> String {
@@ -258,7 +282,9 @@ fn error_of(text: &str) -> String {
 fn bad_buoys_and_segments_are_named() {
     let e = error_of("[[buoy]]\nposition = [0, 0, 0]\nmass = 10\n");
     assert!(
-        e.contains("bad.toml") && e.contains("line 1") && e.contains("[[buoy]] #1")
+        e.contains("bad.toml")
+            && e.contains("line 1")
+            && e.contains("[[buoy]] #1")
             && e.contains("a buoy with zero volume"),
         "{e}"
     );
@@ -269,7 +295,10 @@ fn bad_buoys_and_segments_are_named() {
          fairlead = [1, 0, -1]\nlength = 9\nsegments = 2\ndiameter = 0.02\n\
          mass_per_length = 1\nea = 1e6\nfixed = [\"anchor\", \"fairlead\"]\n",
     );
-    assert!(e.contains("nothing/here") && e.contains("names no node"), "{e}");
+    assert!(
+        e.contains("nothing/here") && e.contains("names no node"),
+        "{e}"
+    );
     let seg = |body: &str| {
         format!(
             "[sea]\ndepth = 50\n[[line]]\nanchor = [0, 0, -40]\nfairlead = [30, 0, 0]\n\

@@ -11,8 +11,8 @@ use aqua_fem::{
     AxialDamping, CableSection, Dofs, Environment, ExternalMotion, GroupId, ModelBuilder, Motion,
     PointBody, Seabed, UnstretchedLength,
 };
-use aqua_hydro::{PointProps, PointShape};
 use aqua_hydro::assembly::PointElement;
+use aqua_hydro::{PointProps, PointShape};
 use aqua_mesh::{Mesh, Section};
 use std::collections::BTreeSet;
 
