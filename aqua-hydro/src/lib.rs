@@ -15,7 +15,8 @@
 //! - Lines (Morison): F = ½ρ_w·φ̄·d_h·ℓ·[C_n|U_n|U_n + C_t|U_t|U_t] plus
 //!   ρ_w·φ̄·A_v·L0·[(1 + C_a)P_n + C_at·P_t]·ā_f plus ρ_w·g·A_v·L0·φ̄·ẑ, added mass
 //!   ρ_w·φ̄·A_v·L0·(C_a·P_n + C_at·P_t); models M1–M5 and const of [`morison`].
-//! - Point bodies: F = φ_p·[½ρ_w(C_D A)|U_r|U_r + ρ_w V(1 + C_a)ā_f + ρ_w g V ẑ].
+//! - Point bodies: F = φ_A·½ρ_w(C_D A)|U_r|U_r + φ_V·[ρ_w V(1 + C_a)ā_f + ρ_w g V ẑ], φ_V, φ_A
+//!   the wet fractions of volume and projected area (a prism's linear law, or a sphere's cap).
 //! - Wake: r = 1, clamp(f), 1 − 0.46·C_D0 (Løland) or clamp((c + 0.05 − 0.38Sn)/(c + 0.05))
 //!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]).
 //! - Linearisation: with J_w = ∂F/∂U_r of an element of n nodes and equal force shares,
@@ -45,6 +46,6 @@ pub use error::HydroError;
 pub use line::LineProps;
 pub use morison::{MorisonCoeffs, MorisonModel, MorisonModelId};
 pub use panel::{NetProps, Want};
-pub use point::PointProps;
+pub use point::{PointProps, PointShape};
 pub use screen::{ScreenModel, ScreenModelId};
 pub use wake::{Wake, WakeCell, WakeModel, WakeModelId, WakeSpec, WakeUpdate};

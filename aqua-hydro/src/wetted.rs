@@ -181,6 +181,25 @@ pub fn point(zeta: f64, height: f64) -> (f64, f64) {
     }
 }
 
+/// Submerged volume fraction of a sphere of radius r whose centre is ζ below the surface, and
+/// its derivative: with h = clamp(ζ + r, 0, 2r) the depth of its lowest point, the cap
+/// πh²(3r − h)/3 over 4πr³/3, i.e. h²(3r − h)/(4r³), and d/dζ = 3h(2r − h)/(4r³) (the
+/// waterplane area π(2rh − h²) over the volume).
+pub fn sphere(zeta: f64, r: f64) -> (f64, f64) {
+    if r <= 0.0 {
+        return point(zeta, 0.0);
+    }
+    let h = zeta + r;
+    if h <= 0.0 {
+        (0.0, 0.0)
+    } else if h >= 2.0 * r {
+        (1.0, 0.0)
+    } else {
+        let r3 = 4.0 * r * r * r;
+        (h * h * (3.0 * r - h) / r3, 3.0 * h * (2.0 * r - h) / r3)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -283,6 +302,15 @@ mod tests {
         assert_eq!(point(-0.1, 0.0).0, 0.0);
         assert_eq!(point(0.0, 2.0), (0.5, 0.5));
         assert_eq!(point(1.5, 2.0).0, 1.0);
+    }
+
+    #[test]
+    fn sphere_fraction() {
+        assert_eq!(sphere(0.0, 0.5), (0.5, 0.75 / 0.5));
+        assert_eq!(sphere(-0.6, 0.5).0, 0.0);
+        assert_eq!(sphere(0.6, 0.5).0, 1.0);
+        // a cap of height r/2: πh²(3r − h)/3 / (4πr³/3) = (1/4)(5/2)/4 = 5/32
+        assert!((sphere(-0.25, 0.5).0 - 5.0 / 32.0).abs() < 1e-15);
     }
 
     proptest! {

@@ -7,8 +7,8 @@ use aqua_env::{
 use aqua_hydro::assembly::{MAX_DOFS, MAX_NODES};
 use aqua_hydro::{
     Block, ElementOutput, Elements, HydroError, LineElement, LineProps, LoadAssembly, MorisonModel,
-    NetPanel, NetProps, Outputs, PanelNodes, PointElement, PointProps, ScreenModel, Wake,
-    WakeGroup, WakeModel, WakeUpdate, Want,
+    NetPanel, NetProps, Outputs, PanelNodes, PointElement, PointProps, PointShape, ScreenModel,
+    Wake, WakeGroup, WakeModel, WakeUpdate, Want,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -367,15 +367,27 @@ fn mixed() -> (Vec<[f64; 3]>, Elements) {
                 wake_group: None,
             },
         ],
-        points: vec![PointElement {
-            node: 6,
-            props: PointProps {
-                volume: 0.5,
-                height: 0.4,
-                drag_area: 0.3,
-                added_mass: 0.5,
+        points: vec![
+            PointElement {
+                node: 6,
+                props: PointProps {
+                    volume: 0.5,
+                    shape: PointShape::Prism { height: 0.4 },
+                    drag_area: 0.3,
+                    added_mass: 0.5,
+                },
             },
-        }],
+            PointElement {
+                // partly wet: centre 0.3 m above still water, radius 0.5 m
+                node: 4,
+                props: PointProps {
+                    volume: 4.0 / 3.0 * PI * 0.125,
+                    shape: PointShape::Sphere { radius: 0.5 },
+                    drag_area: 0.5 * PI * 0.25,
+                    added_mass: 0.5,
+                },
+            },
+        ],
         ..Default::default()
     };
     (x, els)

@@ -2,7 +2,8 @@
 //!
 //! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`],
 //!   docs/theory/cages.md#cage-types to #multiple-cages), a flat net panel builder
-//!   ([`PanelParams`], #flat-net-panel) and a single-line builder ([`LineParams`], #single-line).
+//!   ([`PanelParams`], #flat-net-panel), a single-line builder ([`LineParams`], #single-line;
+//!   one section or [`LineSegment`]s) and the node of a free buoy ([`buoy_node`]).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
 //! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]), and the
 //!   run output, a multiblock series with one named block per object and kind ([`vtm`]).
@@ -38,6 +39,7 @@
 //! [`PointWeight`]s and one [`Object`] per builder call (with its [`NetGrouping`]). All units SI,
 //! z up, z = 0 at the still-water level.
 
+pub mod buoy;
 pub mod cage;
 pub mod collar;
 pub mod error;
@@ -49,11 +51,12 @@ pub mod panel;
 pub mod vtk;
 pub mod vtm;
 
+pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, CageType, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
-pub use line::{Fairlead, LineParams, LineShape};
+pub use line::{Fairlead, LineParams, LineSegment, LineShape};
 pub use mesh::{
     CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,
     ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section, SectionOverride,

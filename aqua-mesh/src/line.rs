@@ -1,10 +1,14 @@
 //! Single line builder (`[[line]]`: moorings, bridles; docs/theory/cages.md#single-line).
 //!
-//! Nodes 0..N from anchor to fairlead, element unstretched length L0/N. Initial shape: straight
-//! and uniformly stretched if L0 ≤ chord; otherwise the inextensible catenary of length L0
-//! through both ends, z = a·cosh((x − x0)/a) + c in the vertical plane of the chord, with a from
-//! √(L0² − h²) = 2a·sinh(l/2a) (l horizontal, h vertical span), nodes at arc lengths i·L0/N,
-//! and nodes below the seabed projected onto it.
+//! Nodes 0..N from anchor to fairlead. A line is one section of unstretched length L0 in N
+//! elements of L0/N, or a chain of segments (`[[line.segment]]`, e.g. chain then rope), segment
+//! k of length L_k in N_k elements of L_k/N_k, each its own element group, L0 = Σ L_k.
+//! Initial shape: straight and uniformly stretched if L0 ≤ chord; otherwise the inextensible
+//! catenary of length L0 through both ends, z = a·cosh((x − x0)/a) + c in the vertical plane
+//! of the chord, with a from √(L0² − h²) = 2a·sinh(l/2a) (l horizontal, h vertical span),
+//! nodes at their arc lengths (i·L0/N for one section; the segments' own spacing otherwise),
+//! and nodes below the seabed projected onto it. The catenary is that of a uniform line: for
+//! segments of different weights it is a starting shape only, statics finds the true one.
 
 use crate::Mesh;
 use crate::error::{MeshError, Result};
@@ -43,7 +47,8 @@ pub struct LineParams {
     pub anchor: [f64; 3],
     /// `fairlead` [m] or node reference.
     pub fairlead: Option<Fairlead>,
-    /// `length` L0 unstretched [m], > 0.
+    /// `length` L0 unstretched [m], > 0 (0 = not given; required without segments).
+    #[serde(default)]
     pub length: f64,
     /// `segments` N ≥ 1 (or `element_length`).
     pub segments: Option<u32>,
@@ -92,6 +97,216 @@ pub struct LineParams {
     pub ei: Option<f64>,
     /// `bending` on/off (default: on for a pipe or when `ei` is given).
     pub bending: Option<bool>,
+    /// `[[line.segment]]`: the line as segments from anchor to fairlead, instead of
+    /// `length`, `segments`/`element_length`, `group` and the section keys.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub segment: Vec<LineSegment>,
+}
+
+/// One `[[line.segment]]`: a stretch of a line with its own section, listed from the anchor
+/// to the fairlead. Its elements form the group `name` of the line's object.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineSegment {
+    /// `name`: the element group (default `segment<k>`, k from 0 at the anchor).
+    pub name: Option<String>,
+    /// `length` L_k unstretched [m], > 0.
+    pub length: f64,
+    /// `elements` N_k ≥ 1 (or `element_length`).
+    pub elements: Option<u32>,
+    /// `element_length` [m]: N_k = max(1, round(L_k/el)).
+    pub element_length: Option<f64>,
+    /// `diameter` d [m] (required).
+    pub diameter: Option<f64>,
+    /// `wall_thickness` [m].
+    pub wall_thickness: Option<f64>,
+    /// `ea` [N] (or `youngs_modulus`).
+    pub ea: Option<f64>,
+    /// `youngs_modulus` [Pa].
+    pub youngs_modulus: Option<f64>,
+    /// `density` [kg/m³] (or `mass_per_length`).
+    pub density: Option<f64>,
+    /// `mass_per_length` [kg/m].
+    pub mass_per_length: Option<f64>,
+    /// `hydro_diameter` [m].
+    pub hydro_diameter: Option<f64>,
+    /// `volume_diameter` [m].
+    pub volume_diameter: Option<f64>,
+    /// `elastic_diameter` [m].
+    pub elastic_diameter: Option<f64>,
+    /// `compression_ratio`.
+    pub compression_ratio: Option<f64>,
+    /// `axial_damping` [N·s].
+    pub axial_damping: Option<f64>,
+    /// `axial_damping_ratio`.
+    pub axial_damping_ratio: Option<f64>,
+    /// `initial_tension` [N].
+    pub initial_tension: Option<f64>,
+    /// `seabed` contact.
+    pub seabed: Option<bool>,
+    /// `contact_diameter` [m].
+    pub contact_diameter: Option<f64>,
+    /// `material` label.
+    pub material: Option<String>,
+}
+
+/// The section keys of a line or a segment: diameter, material and the overrides.
+struct SectionKeys<'a> {
+    diameter: Option<f64>,
+    material: Option<&'a str>,
+    over: SectionOverride,
+}
+
+impl LineParams {
+    fn section_keys(&self) -> SectionKeys<'_> {
+        SectionKeys {
+            diameter: self.diameter,
+            material: self.material.as_deref(),
+            over: SectionOverride {
+                diameter: None,
+                wall_thickness: self.wall_thickness,
+                ea: self.ea,
+                youngs_modulus: self.youngs_modulus,
+                density: self.density,
+                mass_per_length: self.mass_per_length,
+                hydro_diameter: self.hydro_diameter,
+                volume_diameter: self.volume_diameter,
+                elastic_diameter: self.elastic_diameter,
+                compression_ratio: self.compression_ratio,
+                axial_damping: self.axial_damping,
+                axial_damping_ratio: self.axial_damping_ratio,
+                initial_tension: self.initial_tension,
+                seabed: self.seabed,
+                contact_diameter: self.contact_diameter,
+                material: None,
+                ei: self.ei,
+                bending: self.bending,
+            },
+        }
+    }
+}
+
+impl LineSegment {
+    fn section_keys(&self) -> SectionKeys<'_> {
+        SectionKeys {
+            diameter: self.diameter,
+            material: self.material.as_deref(),
+            over: SectionOverride {
+                diameter: None,
+                wall_thickness: self.wall_thickness,
+                ea: self.ea,
+                youngs_modulus: self.youngs_modulus,
+                density: self.density,
+                mass_per_length: self.mass_per_length,
+                hydro_diameter: self.hydro_diameter,
+                volume_diameter: self.volume_diameter,
+                elastic_diameter: self.elastic_diameter,
+                compression_ratio: self.compression_ratio,
+                axial_damping: self.axial_damping,
+                axial_damping_ratio: self.axial_damping_ratio,
+                initial_tension: self.initial_tension,
+                seabed: self.seabed,
+                contact_diameter: self.contact_diameter,
+                material: None,
+                ei: None,
+                bending: None,
+            },
+        }
+    }
+}
+
+impl SectionKeys<'_> {
+    /// The cable section; `prefix` names the table in messages (`""` or `segment[k].`).
+    fn section(&self, obj: &str, prefix: &str) -> Result<Section> {
+        let key = |k: &str| format!("{prefix}{k}");
+        let d = match self.diameter {
+            Some(d) if d.is_finite() && d > 0.0 => d,
+            Some(d) => {
+                return Err(MeshError::param(
+                    obj,
+                    &key("diameter"),
+                    d,
+                    "must be a finite number > 0",
+                ));
+            }
+            None => {
+                return Err(MeshError::param(
+                    obj,
+                    &key("diameter"),
+                    "(missing)",
+                    "required: the line's nominal diameter [m]",
+                ));
+            }
+        };
+        if self.over.ea.is_none() && self.over.youngs_modulus.is_none() {
+            return Err(MeshError::param(
+                obj,
+                &key("ea"),
+                "(missing)",
+                "give `ea` [N] or `youngs_modulus` [Pa]",
+            ));
+        }
+        if self.over.mass_per_length.is_none() && self.over.density.is_none() {
+            return Err(MeshError::param(
+                obj,
+                &key("mass_per_length"),
+                "(missing)",
+                "give `mass_per_length` [kg/m] or `density` [kg/m³]",
+            ));
+        }
+        let mut section = Section::cable(
+            self.material.unwrap_or("line"),
+            d,
+            self.over.youngs_modulus.unwrap_or(0.0),
+            self.over.density.unwrap_or(0.0),
+        );
+        let trimmed = prefix.trim_end_matches('.');
+        self.over.apply(obj, trimmed, &mut section)?;
+        Ok(section)
+    }
+}
+
+/// A stretch of uniform section: its element group, unstretched length [m], element count
+/// and section.
+struct Stretch {
+    group: String,
+    length: f64,
+    elements: usize,
+    section: Section,
+}
+
+/// Element count from `count` or `element_length` (keys named as in the table).
+fn element_count(
+    obj: &str,
+    keys: (&str, &str),
+    length: f64,
+    count: Option<u32>,
+    element_length: Option<f64>,
+) -> Result<usize> {
+    let (count_key, el_key) = keys;
+    match (count, element_length) {
+        (Some(_), Some(_)) => Err(MeshError::inconsistent(
+            obj,
+            format!("both `{count_key}` and `{el_key}` given; give only one"),
+        )),
+        (Some(s), None) if s >= 1 => Ok(s as usize),
+        (Some(s), None) => Err(MeshError::param(obj, count_key, s, "must be >= 1")),
+        (None, Some(el)) if el.is_finite() && el > 0.0 => {
+            Ok((length / el).round().max(1.0) as usize)
+        }
+        (None, Some(el)) => Err(MeshError::param(
+            obj,
+            el_key,
+            el,
+            "must be a finite number > 0",
+        )),
+        (None, None) => Err(MeshError::param(
+            obj,
+            count_key,
+            "(missing)",
+            format!("give `{count_key}` (>= 1) or `{el_key}` (> 0)"),
+        )),
+    }
 }
 
 fn finite3(obj: &str, key: &str, v: [f64; 3]) -> Result<Point3<f64>> {
@@ -109,24 +324,39 @@ fn finite3(obj: &str, key: &str, v: [f64; 3]) -> Result<Point3<f64>> {
 
 /// Positions of N+1 nodes of an inextensible line of length `l0` hanging between `a` and `b`
 /// (catenary in the vertical plane through both ends; straight when slack is impossible or the
-/// chord is vertical). Returns `None` if `a == b`.
+/// chord is vertical), at arc lengths i·l0/N. Returns `None` if `a == b`.
 pub fn catenary_nodes(
     a: Point3<f64>,
     b: Point3<f64>,
     l0: f64,
     n: usize,
 ) -> Option<Vec<Point3<f64>>> {
+    if n == 0 {
+        return None;
+    }
+    let arc: Vec<f64> = (0..=n).map(|i| l0 * i as f64 / n as f64).collect();
+    catenary_points(a, b, l0, &arc)
+}
+
+/// As [`catenary_nodes`], at the given arc lengths s ∈ [0, l0] from `a` [m] (s ≥ l0 gives `b`
+/// exactly); on the straight chord the point at s is at the fraction s/l0 of it.
+pub fn catenary_points(
+    a: Point3<f64>,
+    b: Point3<f64>,
+    l0: f64,
+    arc: &[f64],
+) -> Option<Vec<Point3<f64>>> {
     let d = b - a;
     let chord = d.norm();
-    if chord == 0.0 || n == 0 {
+    if chord == 0.0 || arc.is_empty() || !(l0 > 0.0) {
         return None;
     }
     let horiz = Vector3::new(d.x, d.y, 0.0);
     let l = horiz.norm();
     let h = d.z;
     let straight = || {
-        (0..=n)
-            .map(|i| a + d * (i as f64 / n as f64))
+        arc.iter()
+            .map(|&s| if s >= l0 { b } else { a + d * (s / l0) })
             .collect::<Vec<_>>()
     };
     if l0 <= chord || l <= 1e-9 * chord {
@@ -158,12 +388,11 @@ pub fn catenary_nodes(
     let s0 = (-x0 / ca).sinh();
     let c0 = (-x0 / ca).cosh();
     Some(
-        (0..=n)
-            .map(|i| {
-                if i == n {
+        arc.iter()
+            .map(|&s| {
+                if s >= l0 {
                     return b;
                 }
-                let s = l0 * i as f64 / n as f64;
                 let x = x0 + ca * (s / ca + s0).asinh();
                 let z = ca * ((x - x0) / ca).cosh() - ca * c0;
                 a + ex * x + Vector3::new(0.0, 0.0, z)
@@ -209,44 +438,9 @@ impl LineParams {
                 ));
             }
         };
-        let l0 = self.length;
-        if !(l0.is_finite() && l0 > 0.0) {
-            return Err(MeshError::param(
-                obj,
-                "length",
-                l0,
-                "must be a finite number > 0",
-            ));
-        }
-        let n = match (self.segments, self.element_length) {
-            (Some(_), Some(_)) => {
-                return Err(MeshError::inconsistent(
-                    obj,
-                    "both `segments` and `element_length` given; give only one",
-                ));
-            }
-            (Some(s), None) if s >= 1 => s as usize,
-            (Some(s), None) => {
-                return Err(MeshError::param(obj, "segments", s, "must be >= 1"));
-            }
-            (None, Some(el)) if el.is_finite() && el > 0.0 => (l0 / el).round().max(1.0) as usize,
-            (None, Some(el)) => {
-                return Err(MeshError::param(
-                    obj,
-                    "element_length",
-                    el,
-                    "must be a finite number > 0",
-                ));
-            }
-            (None, None) => {
-                return Err(MeshError::param(
-                    obj,
-                    "segments",
-                    "(missing)",
-                    "give `segments` (>= 1) or `element_length` (> 0)",
-                ));
-            }
-        };
+        let stretches = self.stretches(obj, &name)?;
+        let l0: f64 = stretches.iter().map(|st| st.length).sum();
+        let n: usize = stretches.iter().map(|st| st.elements).sum();
         if n > crate::cage::MAX_NODES {
             return Err(MeshError::param(obj, "segments", n, "must be <= 2000000"));
         }
@@ -260,91 +454,28 @@ impl LineParams {
                 format!("is below the seabed z = {zb} m; put the anchor on or above it"),
             ));
         }
-        let chord = (fair - anchor).norm();
-        if chord == 0.0 {
+        if (fair - anchor).norm() == 0.0 {
             return Err(MeshError::inconsistent(
                 obj,
                 "anchor and fairlead coincide; a line needs two distinct ends",
             ));
         }
-        let mut notices = Vec::new();
-        if l0 < chord && (chord - l0) / l0 > 0.01 {
-            notices.push(format!(
-                "warning: {obj}: length {l0} m is shorter than the chord {chord:.4} m; the line \
-                 starts stretched by {:.2} %",
-                100.0 * (chord - l0) / l0
-            ));
+        // Arc length of every node from the anchor, each stretch evenly divided.
+        let mut arc = vec![0.0];
+        for st in &stretches {
+            let s0 = *arc.last().unwrap_or(&0.0);
+            arc.extend((1..=st.elements).map(|i| s0 + st.length * i as f64 / st.elements as f64));
         }
-        // Section.
-        let d = match self.diameter {
-            Some(d) if d.is_finite() && d > 0.0 => d,
-            Some(d) => {
-                return Err(MeshError::param(
-                    obj,
-                    "diameter",
-                    d,
-                    "must be a finite number > 0",
-                ));
-            }
-            None => {
-                return Err(MeshError::param(
-                    obj,
-                    "diameter",
-                    "(missing)",
-                    "required: the line's nominal diameter [m]",
-                ));
-            }
-        };
-        if self.ea.is_none() && self.youngs_modulus.is_none() {
-            return Err(MeshError::param(
-                obj,
-                "ea",
-                "(missing)",
-                "give `ea` [N] or `youngs_modulus` [Pa]",
-            ));
-        }
-        if self.mass_per_length.is_none() && self.density.is_none() {
-            return Err(MeshError::param(
-                obj,
-                "mass_per_length",
-                "(missing)",
-                "give `mass_per_length` [kg/m] or `density` [kg/m³]",
-            ));
-        }
-        let mut section = Section::cable(
-            self.material.as_deref().unwrap_or("line"),
-            d,
-            self.youngs_modulus.unwrap_or(0.0),
-            self.density.unwrap_or(0.0),
-        );
-        SectionOverride {
-            diameter: None,
-            wall_thickness: self.wall_thickness,
-            ea: self.ea,
-            youngs_modulus: self.youngs_modulus,
-            density: self.density,
-            mass_per_length: self.mass_per_length,
-            hydro_diameter: self.hydro_diameter,
-            volume_diameter: self.volume_diameter,
-            elastic_diameter: self.elastic_diameter,
-            compression_ratio: self.compression_ratio,
-            axial_damping: self.axial_damping,
-            axial_damping_ratio: self.axial_damping_ratio,
-            initial_tension: self.initial_tension,
-            seabed: self.seabed,
-            contact_diameter: self.contact_diameter,
-            material: None,
-            ei: self.ei,
-            bending: self.bending,
-        }
-        .apply(obj, "", &mut section)?;
-
         let mut pts = match self.shape {
-            LineShape::Straight => (0..=n)
-                .map(|i| anchor + (fair - anchor) * (i as f64 / n as f64))
+            LineShape::Straight => arc
+                .iter()
+                .map(|&s| anchor + (fair - anchor) * (s / l0))
                 .collect(),
-            LineShape::Catenary => catenary_nodes(anchor, fair, l0, n).unwrap_or_default(),
+            LineShape::Catenary => catenary_points(anchor, fair, l0, &arc).unwrap_or_default(),
         };
+        if let Some(p) = pts.last_mut() {
+            *p = fair;
+        }
         if let Some(zb) = seabed_z {
             for p in pts.iter_mut() {
                 p.z = p.z.max(zb);
@@ -354,10 +485,18 @@ impl LineParams {
         for p in pts {
             b.add_node(p);
         }
-        let gname = self.group.clone().unwrap_or_else(|| name.clone());
-        let g = b.group(&gname, Role::MooringLine, Some(section));
-        for i in 0..n {
-            b.add_line(g, i, i + 1, Some(l0 / n as f64));
+        let mut first = 0;
+        let mut joints = Vec::new();
+        for st in &stretches {
+            let g = b.group(&st.group, Role::MooringLine, Some(st.section.clone()));
+            let le = st.length / st.elements as f64;
+            for i in first..first + st.elements {
+                b.add_line(g, i, i + 1, Some(le));
+            }
+            first += st.elements;
+            if first < n {
+                joints.push(first);
+            }
         }
         b.finish_element_nodes();
         let ga = b.group("anchor", Role::Anchor, None);
@@ -366,6 +505,15 @@ impl LineParams {
         b.set_nodes(gf, [n]);
         let gl = b.group("line_nodes", Role::LineNodes, None);
         b.set_nodes(gl, 0..=n);
+        if !joints.is_empty() {
+            let gj = b.group("joints", Role::UserNodes, None);
+            b.set_nodes(gj, joints);
+        }
+        let gname = stretches
+            .iter()
+            .map(|st| st.group.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
         let fixed_names = self.fixed.clone().unwrap_or_else(|| vec!["anchor".into()]);
         let mut fixed = Vec::new();
         for f in &fixed_names {
@@ -376,7 +524,10 @@ impl LineParams {
                         object: name.clone(),
                         key: "fixed".into(),
                         name: f.clone(),
-                        valid: format!("anchor, fairlead, line_nodes, {gname}"),
+                        valid: format!(
+                            "anchor, fairlead, line_nodes, {}{gname}",
+                            if stretches.len() > 1 { "joints, " } else { "" }
+                        ),
                     });
                 }
             }
@@ -391,10 +542,118 @@ impl LineParams {
             counts: None,
             source_node_tags: Vec::new(),
         });
-        b.mesh.notices = notices;
         Ok(b.mesh)
     }
+
+    /// The stretches of uniform section: the one section of the line, or its segments.
+    fn stretches(&self, obj: &str, name: &str) -> Result<Vec<Stretch>> {
+        if self.segment.is_empty() {
+            let l0 = self.length;
+            if !(l0.is_finite() && l0 > 0.0) {
+                return Err(MeshError::param(
+                    obj,
+                    "length",
+                    l0,
+                    "must be a finite number > 0 (the unstretched length), or give \
+                     [[line.segment]] tables",
+                ));
+            }
+            let elements = element_count(
+                obj,
+                ("segments", "element_length"),
+                l0,
+                self.segments,
+                self.element_length,
+            )?;
+            return Ok(vec![Stretch {
+                group: self.group.clone().unwrap_or_else(|| name.to_string()),
+                length: l0,
+                elements,
+                section: self.section_keys().section(obj, "")?,
+            }]);
+        }
+        self.single_section_keys_absent(obj)?;
+        let mut out: Vec<Stretch> = Vec::with_capacity(self.segment.len());
+        for (k, seg) in self.segment.iter().enumerate() {
+            let prefix = format!("segment[{k}].");
+            let key = |x: &str| format!("{prefix}{x}");
+            if !(seg.length.is_finite() && seg.length > 0.0) {
+                return Err(MeshError::param(
+                    obj,
+                    &key("length"),
+                    seg.length,
+                    "must be a finite number > 0 (the segment's unstretched length)",
+                ));
+            }
+            let elements = element_count(
+                obj,
+                (&key("elements"), &key("element_length")),
+                seg.length,
+                seg.elements,
+                seg.element_length,
+            )?;
+            let group = seg.name.clone().unwrap_or_else(|| format!("segment{k}"));
+            if RESERVED.contains(&group.as_str()) || out.iter().any(|o| o.group == group) {
+                return Err(MeshError::param(
+                    obj,
+                    &key("name"),
+                    &group,
+                    format!(
+                        "must differ from the other segments' names and from {}",
+                        RESERVED.join(", ")
+                    ),
+                ));
+            }
+            out.push(Stretch {
+                group,
+                length: seg.length,
+                elements,
+                section: seg.section_keys().section(obj, &prefix)?,
+            });
+        }
+        Ok(out)
+    }
+
+    /// With `[[line.segment]]`, the keys of a one-section line must be absent.
+    fn single_section_keys_absent(&self, obj: &str) -> Result<()> {
+        let given = [
+            ("length", self.length != 0.0),
+            ("segments", self.segments.is_some()),
+            ("element_length", self.element_length.is_some()),
+            ("group", self.group.is_some()),
+            ("diameter", self.diameter.is_some()),
+            ("wall_thickness", self.wall_thickness.is_some()),
+            ("ea", self.ea.is_some()),
+            ("youngs_modulus", self.youngs_modulus.is_some()),
+            ("density", self.density.is_some()),
+            ("mass_per_length", self.mass_per_length.is_some()),
+            ("hydro_diameter", self.hydro_diameter.is_some()),
+            ("volume_diameter", self.volume_diameter.is_some()),
+            ("elastic_diameter", self.elastic_diameter.is_some()),
+            ("compression_ratio", self.compression_ratio.is_some()),
+            ("axial_damping", self.axial_damping.is_some()),
+            ("axial_damping_ratio", self.axial_damping_ratio.is_some()),
+            ("initial_tension", self.initial_tension.is_some()),
+            ("seabed", self.seabed.is_some()),
+            ("contact_diameter", self.contact_diameter.is_some()),
+            ("material", self.material.is_some()),
+        ];
+        match given.iter().find(|(_, g)| *g) {
+            Some((k, _)) => Err(MeshError::inconsistent(
+                obj,
+                format!(
+                    "`{k}` is given with [[line.segment]] tables; a segmented line takes its \
+                     length (the sum), element counts, groups (the segment names) and sections \
+                     from its segments: move `{k}` into the segments or remove it"
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
 }
+
+/// Node group names of a line; a segment may not use them.
+const RESERVED: [&str; 5] = ["anchor", "fairlead", "line_nodes", "joints", "fixed"];
 
 #[cfg(test)]
 mod tests {
@@ -463,9 +722,92 @@ mod tests {
         let mut p = chain();
         p.diameter = None;
         assert!(p.build().unwrap_err().to_string().contains("diameter"));
+        // A line shorter than its chord builds (straight, stretched); the scene warns.
         let mut p = chain();
         p.length = 100.0;
         let m = p.build().unwrap();
-        assert_eq!(m.notices.len(), 1);
+        assert!((m.nodes[15] - Point3::new(-50.0, 0.0, -25.0)).norm() < 1e-9);
+    }
+
+    fn chain_then_rope() -> LineParams {
+        let seg = |name: &str, length, elements, d, mu, ea| LineSegment {
+            name: Some(name.into()),
+            length,
+            elements: Some(elements),
+            diameter: Some(d),
+            mass_per_length: Some(mu),
+            ea: Some(ea),
+            ..Default::default()
+        };
+        LineParams {
+            name: Some("m1".into()),
+            anchor: [-100.0, 0.0, -50.0],
+            fairlead: Some(Fairlead::Point([0.0, 0.0, 0.0])),
+            segment: vec![
+                seg("chain", 60.0, 12, 0.08, 130.0, 6e8),
+                seg("rope", 90.0, 30, 0.06, 3.0, 5e7),
+            ],
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn segments_have_their_groups_spacing_and_joint() {
+        let m = chain_then_rope().build().unwrap();
+        assert_eq!(m.nodes.len(), 43);
+        assert_eq!(m.lines.len(), 42);
+        let gc = m.group(0, "chain").unwrap();
+        let gr = m.group(0, "rope").unwrap();
+        assert_eq!(gc.lines, (0..12).collect::<Vec<_>>());
+        assert_eq!(gr.lines, (12..42).collect::<Vec<_>>());
+        assert_eq!(gc.section.as_ref().unwrap().linear_mass(), 130.0);
+        assert_eq!(gr.section.as_ref().unwrap().linear_mass(), 3.0);
+        for e in 0..12 {
+            assert_eq!(m.lines[e].rest_length, Some(5.0));
+        }
+        for e in 12..42 {
+            assert_eq!(m.lines[e].rest_length, Some(3.0));
+        }
+        assert_eq!(m.group(0, "joints").unwrap().nodes, vec![12]);
+        // The joint sits on the same catenary of length 150 m at arc length 60 m as a
+        // one-section line of 30 elements has its node 12 (also at 60 m).
+        let one = chain().build().unwrap();
+        assert!((m.nodes[12] - one.nodes[12]).norm() < 1e-9);
+        assert!((m.nodes[42] - Point3::origin()).norm() < 1e-12);
+        // Straight shape: the joint at 60/150 of the chord.
+        let mut p = chain_then_rope();
+        p.shape = LineShape::Straight;
+        let m = p.build().unwrap();
+        assert!((m.nodes[12] - Point3::new(-60.0, 0.0, -30.0)).norm() < 1e-9);
+    }
+
+    #[test]
+    fn segment_errors_name_the_key() {
+        let mut p = chain_then_rope();
+        p.segment[1].length = -5.0;
+        let e = p.build().unwrap_err().to_string();
+        assert!(e.contains("segment[1].length") && e.contains("-5"), "{e}");
+        let mut p = chain_then_rope();
+        p.length = 150.0;
+        let e = p.build().unwrap_err().to_string();
+        assert!(
+            e.contains("`length`") && e.contains("[[line.segment]]"),
+            "{e}"
+        );
+        let mut p = chain_then_rope();
+        p.segment[1].name = Some("chain".into());
+        let e = p.build().unwrap_err().to_string();
+        assert!(e.contains("segment[1].name"), "{e}");
+        let mut p = chain_then_rope();
+        p.segment[0].diameter = None;
+        let e = p.build().unwrap_err().to_string();
+        assert!(e.contains("segment[0].diameter"), "{e}");
+        let mut p = chain_then_rope();
+        p.segment[0].elements = None;
+        let e = p.build().unwrap_err().to_string();
+        assert!(e.contains("segment[0].elements"), "{e}");
+        let t = "anchor = [0, 0, -10]\nfairlead = [5, 0, 0]\n[[segment]]\nlength = 5\nlenght = 2\n";
+        let e = toml::from_str::<LineParams>(t).unwrap_err().to_string();
+        assert!(e.contains("lenght") && e.contains("elements"), "{e}");
     }
 }

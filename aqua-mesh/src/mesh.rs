@@ -419,6 +419,8 @@ pub enum ObjectKind {
     Line,
     /// A mesh imported from gmsh.
     Gmsh,
+    /// The node of a free buoy.
+    Buoy,
 }
 
 /// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).
@@ -661,6 +663,7 @@ impl Mesh {
                         ObjectKind::Panel => "panel".into(),
                         ObjectKind::Line => "line".into(),
                         ObjectKind::Gmsh => "gmsh".into(),
+                        ObjectKind::Buoy => "buoy".into(),
                     },
                     copies: o.origins.len(),
                     counts: o.counts.clone(),

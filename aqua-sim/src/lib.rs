@@ -24,8 +24,10 @@
 //! text; warnings are [`Diagnostic`]s.
 
 pub mod build;
+pub mod buoy;
 pub mod check;
 pub mod coupling;
+pub mod design;
 pub mod diagnostic;
 pub mod error;
 pub mod files;

@@ -191,6 +191,10 @@ impl<'p> Simulation<'p> {
                 record.ending = Ending::Interrupted;
                 return Ok(());
             }
+            // Design checks of the equilibrium (docs/theory/farm.md#design-warnings).
+            for d in prep.built.design.at_equilibrium(&stat.state.x) {
+                obs.diagnostic(&d);
+            }
             initial = Some(stat.state);
         }
         let Some(integrator) = &plan.dynamics else {

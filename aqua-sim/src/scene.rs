@@ -14,11 +14,13 @@
 //! [[mesh]]                # aqua-mesh GmshParams (cages.md#gmsh-import) + net.* hydro keys
 //! [[group]]               # per element group: section overrides + Morison keys
 //! [[point]]               # point bodies on node groups (fem.md#loads)
+//! [[buoy]]                # buoys and coupling plates (crate::buoy, farm.md#buoys)
 //! [[fix]]                 # extra fixed DOFs (fem.md#boundary-conditions)
 //! [[prescribed]]          # prescribed motions (fem.md#boundary-conditions)
 //! [analysis]              # static / dynamic settings (README.md#scene-files)
 //! ```
 
+use crate::buoy::BuoySpec;
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
 use aqua_env::SeaSpec;
@@ -528,6 +530,8 @@ pub struct Scene {
     pub group: Vec<Located<GroupSpec>>,
     /// Point bodies.
     pub point: Vec<Located<PointSpec>>,
+    /// Buoys and coupling plates.
+    pub buoy: Vec<Located<BuoySpec>>,
     /// Extra fixed DOFs.
     pub fix: Vec<Located<FixSpec>>,
     /// Prescribed motions.
@@ -560,6 +564,8 @@ struct RawScene {
     group: Vec<Spanned<Table>>,
     #[serde(default)]
     point: Vec<Spanned<Table>>,
+    #[serde(default)]
+    buoy: Vec<Spanned<Table>>,
     #[serde(default)]
     fix: Vec<Spanned<Table>>,
     #[serde(default)]
@@ -783,6 +789,7 @@ impl RawScene {
         respan(&mut self.mesh, base.mesh);
         respan(&mut self.group, base.group);
         respan(&mut self.point, base.point);
+        respan(&mut self.buoy, base.buoy);
         respan(&mut self.fix, base.fix);
         respan(&mut self.prescribed, base.prescribed);
         self
@@ -826,6 +833,11 @@ impl Ctx<'_> {
             mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
             group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
             point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
+            buoy: ctx.each(&raw.buoy, |i, line, t| {
+                let spec: BuoySpec = ctx.typed("buoy", i, line, "", t)?;
+                spec.resolve().map_err(|m| ctx.err("buoy", i, line, m))?;
+                Ok(spec)
+            })?,
             fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,
             prescribed: ctx.each(&raw.prescribed, |i, line, t| {
                 ctx.typed("prescribed", i, line, "", t)

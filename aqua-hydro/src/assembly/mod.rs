@@ -26,7 +26,7 @@ use crate::error::{HydroError, check_non_negative, check_positive, check_solidit
 use crate::line::{self, LineProps};
 use crate::morison::MorisonModel;
 use crate::panel::{self, M3, NetProps, V3, Want};
-use crate::point::{self, PointProps};
+use crate::point::{self, PointProps, PointShape};
 use crate::screen::{RE_MAX, ScreenModel};
 use crate::wake::{Wake, WakeCell, WakeModel, WakeUpdate, unramped_current};
 use aqua_env::{FlowPoint, Phase, Sea};
@@ -440,7 +440,22 @@ impl LoadAssembly {
         for (e, p) in points.iter().enumerate() {
             let key = |k: &str| format!("point[{e}] {k}");
             check_non_negative(&key("volume"), p.props.volume, "m³")?;
-            check_non_negative(&key("height"), p.props.height, "m")?;
+            match p.props.shape {
+                PointShape::Prism { height } => check_non_negative(&key("height"), height, "m")?,
+                PointShape::Sphere { radius } => {
+                    let v = 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+                    if !(radius.is_finite() && radius > 0.0) {
+                        return Err(HydroError::range(key("radius"), radius, "finite and > 0 m"));
+                    }
+                    if (p.props.volume - v).abs() > 1e-9 * v {
+                        return Err(HydroError::range(
+                            key("volume"),
+                            p.props.volume,
+                            format!("4πR³/3 = {v} m³ for a sphere of radius {radius} m"),
+                        ));
+                    }
+                }
+            }
             check_non_negative(&key("drag_area"), p.props.drag_area, "m²")?;
             check_non_negative(&key("added_mass_coefficient"), p.props.added_mass, "-")?;
             check_node("point", e, p.node, n_nodes)?;

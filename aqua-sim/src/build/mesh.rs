@@ -1,5 +1,6 @@
-//! The merged mesh of a scene: every `[[cage]]`, `[[panel]]`, `[[mesh]]` and `[[line]]`, with
-//! unique object names; a line whose fairlead names a node of another object is welded to it.
+//! The merged mesh of a scene: every `[[cage]]`, `[[panel]]`, `[[mesh]]`, free `[[buoy]]`
+//! (one with a `position`) and `[[line]]`, with unique object names; a line whose fairlead
+//! names a node of another object is welded to it.
 
 use crate::error::{Result, SimError};
 use crate::scene::{NetHydro, Scene};
@@ -121,8 +122,8 @@ impl Merge {
     }
 }
 
-/// Builds the merged mesh of a scene: cages, panels, gmsh meshes, then lines (whose fairlead
-/// may name a node of the others).
+/// Builds the merged mesh of a scene: cages, panels, gmsh meshes, free buoys, then lines
+/// (whose fairlead may name a node of the others).
 pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
     let file = scene.path.display().to_string();
     let mut m = Merge {
@@ -161,6 +162,13 @@ pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
         p.name = Some(name.clone());
         m.append("mesh", i, c.line, aqua_mesh::import_gmsh(&p))?;
         m.nets.insert(name, c.value.net_hydro.clone());
+    }
+    // Free buoys before lines, so that a line's fairlead can name one ("b1/buoy").
+    for (i, b) in scene.buoy.iter().enumerate() {
+        if let Some(p) = b.value.position {
+            let name = m.name(&b.value.name, "buoy", i, b.line)?;
+            m.append("buoy", i, b.line, aqua_mesh::buoy_node(&name, p))?;
+        }
     }
     for (i, c) in scene.line.iter().enumerate() {
         add_line(scene, &mut m, i, c)?;

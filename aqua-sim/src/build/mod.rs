@@ -6,6 +6,7 @@
 //! elements) and [`find_line_ends`] (what the outputs report per `[[line]]`).
 
 mod bending;
+mod buoys;
 mod mesh;
 mod structure;
 mod water;
@@ -14,6 +15,7 @@ pub use mesh::{build_mesh, resolve_ref};
 pub use structure::Prescribed;
 pub use water::{LoadCell, default_wake};
 
+use crate::design::{DesignChecks, LineLength};
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
 use crate::scene::{AnalysisKind, Scene};
@@ -53,8 +55,10 @@ pub struct Built {
     /// Externally driven nodes (built with [`Prescribed::External`]): the `[[prescribed]]`
     /// node reference, its nodes and their motions.
     pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
-    /// Warnings collected while building (mesh, sea).
+    /// Warnings collected while building (mesh, sea, design).
     pub diagnostics: Vec<Diagnostic>,
+    /// What the design checks look at after statics (docs/theory/farm.md#design-warnings).
+    pub design: DesignChecks,
 }
 
 /// The two ends of a single line (docs/theory/fem.md#outputs: report end reactions and end-element
@@ -119,15 +123,31 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         &sea_summary.warnings,
     ));
     let line_ends = find_line_ends(&mesh);
+    let mut floaters = st.buoys;
+    let buoy_nodes: Vec<usize> = floaters.iter().flat_map(|f| f.nodes.clone()).collect();
     for le in &line_ends {
         let oi = mesh.objects.iter().position(|o| o.name == le.name);
         for (end, nd) in [("anchor", le.anchor), ("fairlead", le.fairlead)] {
+            if buoy_nodes.contains(&nd) {
+                continue;
+            }
             if let Some(msg) = oi.and_then(|oi| free_line_end(&mesh, &model, oi, &le.name, end, nd))
             {
                 diagnostics.push(Diagnostic::warning("line/free-end", &le.name, msg));
             }
         }
     }
+    floaters.extend(buoys::floating_pipes(
+        &mesh,
+        &st.sections,
+        model.environment().water_density,
+    ));
+    let design = DesignChecks {
+        floaters,
+        lines: line_lengths(&mesh, &line_ends),
+        seabed_z: model.environment().seabed.as_ref().map(|s| -s.depth),
+    };
+    diagnostics.extend(design.as_built(&mesh.nodes));
     Ok(Built {
         mesh,
         model,
@@ -143,6 +163,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         line_ends,
         external: st.external,
         diagnostics,
+        design,
     })
 }
 
@@ -199,6 +220,28 @@ fn free_line_end(
          `fixed`, give it a [[prescribed]] motion, or set `fairlead` to a node such as \
          \"cage0/top_ring[0]\""
     ))
+}
+
+/// The ends and unstretched length (the sum over its elements) of every `[[line]]`.
+fn line_lengths(mesh: &Mesh, line_ends: &[LineEnds]) -> Vec<LineLength> {
+    line_ends
+        .iter()
+        .filter_map(|le| {
+            let oi = mesh.objects.iter().position(|o| o.name == le.name)? as u32;
+            let unstretched = mesh
+                .lines
+                .iter()
+                .filter(|l| l.object == oi)
+                .map(|l| l.rest_length)
+                .sum::<Option<f64>>()?;
+            Some(LineLength {
+                name: le.name.clone(),
+                anchor: le.anchor,
+                fairlead: le.fairlead,
+                unstretched,
+            })
+        })
+        .collect()
 }
 
 /// Anchor and fairlead nodes and end elements of every `[[line]]` object.

@@ -1,6 +1,6 @@
 //! The structural model (aqua-fem) of a scene: one cable group per mesh line group
 //! ("object/group") with `[[group]]` overrides applied, the cables, point masses from the
-//! builders' weights and `[[point]]`, fixed nodes from the builders' `fixed` groups and
+//! builders' weights, `[[point]]` and `[[buoy]]`, fixed nodes from the builders' `fixed` groups and
 //! `[[fix]]`, and the `[[prescribed]]` motions (or externally driven ones for a coupling).
 
 use super::mesh::{group_names_hint, resolve_ref};
@@ -11,8 +11,8 @@ use aqua_fem::{
     AxialDamping, CableSection, Dofs, Environment, ExternalMotion, GroupId, ModelBuilder, Motion,
     PointBody, Seabed, SeabedFriction, UnstretchedLength,
 };
-use aqua_hydro::PointProps;
 use aqua_hydro::assembly::PointElement;
+use aqua_hydro::{PointProps, PointShape};
 use aqua_mesh::{Mesh, Section};
 use std::collections::BTreeSet;
 
@@ -42,6 +42,8 @@ pub(super) struct Structure {
     pub supported: BTreeSet<usize>,
     /// Externally driven nodes: `[[prescribed]]` reference, its nodes and their motions.
     pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
+    /// The `[[buoy]]`s that should float (for the design checks).
+    pub buoys: Vec<crate::design::Floater>,
 }
 
 /// The structural environment: gravity, water density and the seabed
@@ -94,7 +96,9 @@ pub(super) fn build_structure(
         })
         .map_err(|e| SimError::at(format!("{file}: sinker weight"), e))?;
     }
-    let hydro_points = point_bodies(scene, mesh, &mut b)?;
+    let mut hydro_points = point_bodies(scene, mesh, &mut b)?;
+    let (buoy_points, buoys) = super::buoys::attach_buoys(scene, mesh, &mut b)?;
+    hydro_points.extend(buoy_points);
     let mut supported = fixed_nodes(scene, mesh, &mut b)?;
     let external = prescribed_motions(scene, mesh, prescribed, &mut b, &mut supported)?;
     Ok(Structure {
@@ -104,6 +108,7 @@ pub(super) fn build_structure(
         hydro_points,
         supported,
         external,
+        buoys,
     })
 }
 
@@ -256,7 +261,7 @@ fn point_bodies(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<Vec<
                     node: n,
                     props: PointProps {
                         volume: v.volume,
-                        height: v.height,
+                        shape: PointShape::Prism { height: v.height },
                         drag_area: v.drag_area,
                         added_mass: v.added_mass_coefficient,
                     },

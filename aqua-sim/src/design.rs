@@ -1,0 +1,230 @@
+//! Design warnings (docs/theory/farm.md#design-warnings): things a scene allows but that are
+//! rarely what a designer meant.
+//!
+//! - `design/taut-line`: a `[[line]]` whose unstretched length is shorter than the distance
+//!   between its ends as built (at check and build time): it starts straight and stretched,
+//!   with no slack to give compliance.
+//! - `design/sunk-float`: a buoy, or a node of a floating pipe, whose top is more than its own
+//!   vertical size (a sphere's or pipe's diameter, a cylinder's height) below the still-water
+//!   level at static equilibrium.
+//! - `design/float-on-seabed`: a buoy or floating pipe whose lowest point touches the seabed
+//!   at static equilibrium.
+//!
+//! A floating pipe is a line group meant to float: buoyant (ρ_w·π·d_v²/4 > μ, d_v its volume
+//! diameter, μ its mass per length) and built with every node within one d_v of the still-water
+//! level (a collar ring). Buoys marked `submerged = true` are meant to be under water and only
+//! checked against the seabed.
+
+use crate::diagnostic::Diagnostic;
+use nalgebra::Point3;
+
+/// Something meant to float: a buoy, or the nodes of a floating pipe group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Floater {
+    /// What and which: `buoy 'b1'`, `floating pipe 'cage0/top_ring'`.
+    pub label: String,
+    /// Where (diagnostic location): the buoy or group name.
+    pub location: String,
+    /// Its nodes.
+    pub nodes: Vec<usize>,
+    /// Vertical size [m] (sphere or pipe diameter, cylinder height; 0 for a point).
+    pub size: f64,
+    /// True if it may be under water (only the seabed check applies).
+    pub submerged: bool,
+}
+
+/// The two ends and unstretched length of a `[[line]]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LineLength {
+    /// Line name.
+    pub name: String,
+    /// Anchor node.
+    pub anchor: usize,
+    /// Fairlead node.
+    pub fairlead: usize,
+    /// Sum of its elements' unstretched lengths [m].
+    pub unstretched: f64,
+}
+
+/// What the design checks look at, gathered when the model is built.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DesignChecks {
+    /// Buoys and floating pipes.
+    pub floaters: Vec<Floater>,
+    /// Lines.
+    pub lines: Vec<LineLength>,
+    /// Seabed level z = −depth [m] (`None`: infinite depth).
+    pub seabed_z: Option<f64>,
+}
+
+/// Relative margin by which a line must be short of its chord to be called taut (round-off of
+/// a line built exactly straight).
+const TAUT_MARGIN: f64 = 1e-9;
+
+impl DesignChecks {
+    /// `design/taut-line` in the as-built geometry.
+    pub fn as_built(&self, nodes: &[Point3<f64>]) -> Vec<Diagnostic> {
+        let x: Vec<[f64; 3]> = nodes.iter().map(|p| [p.x, p.y, p.z]).collect();
+        self.taut_lines(&x, "as built")
+    }
+
+    /// The float checks at a static equilibrium `x` [m]. (A line stretched taut at
+    /// equilibrium is not reported: a taut mooring may be the design.)
+    pub fn at_equilibrium(&self, x: &[[f64; 3]]) -> Vec<Diagnostic> {
+        self.floaters
+            .iter()
+            .filter_map(|f| self.floater(f, x))
+            .collect()
+    }
+
+    fn taut_lines(&self, x: &[[f64; 3]], when: &str) -> Vec<Diagnostic> {
+        self.lines
+            .iter()
+            .filter_map(|l| {
+                let (a, b) = (x.get(l.anchor)?, x.get(l.fairlead)?);
+                let chord = dist(a, b);
+                (l.unstretched < chord * (1.0 - TAUT_MARGIN)).then(|| {
+                    Diagnostic::warning(
+                        "design/taut-line",
+                        &l.name,
+                        format!(
+                            "line '{}' is taut {when}: its ends are {chord:.3} m apart but its \
+                             unstretched length is {:.3} m ({:.2} % short); it hangs straight \
+                             and stretched, with no slack to give. Lengthen the line or move \
+                             its anchor closer",
+                            l.name,
+                            l.unstretched,
+                            100.0 * (chord - l.unstretched) / l.unstretched
+                        ),
+                    )
+                })
+            })
+            .collect()
+    }
+
+    /// `design/float-on-seabed`, else `design/sunk-float`, for one floater.
+    fn floater(&self, f: &Floater, x: &[[f64; 3]]) -> Option<Diagnostic> {
+        let half = 0.5 * f.size;
+        let z: Vec<f64> = f
+            .nodes
+            .iter()
+            .filter_map(|&n| x.get(n))
+            .map(|p| p[2])
+            .collect();
+        let lowest = z.iter().copied().fold(f64::INFINITY, f64::min);
+        if let Some(zb) = self.seabed_z {
+            // The penalty contact lets a body sink slightly into the bed.
+            let on_bed = z.iter().filter(|&&zi| zi - half <= zb + 1e-3).count();
+            if on_bed > 0 {
+                return Some(Diagnostic::warning(
+                    "design/float-on-seabed",
+                    &f.location,
+                    format!(
+                        "{} lies on the seabed at static equilibrium ({on_bed} of {} nodes; \
+                         lowest centre at z = {lowest:.3} m, seabed at z = {zb} m): what should \
+                         hold it up is too small for what hangs on it. Give it more volume or \
+                         hang less weight on it",
+                        f.label,
+                        z.len()
+                    ),
+                ));
+            }
+        }
+        if f.submerged || f.size <= 0.0 {
+            return None;
+        }
+        // Its top more than its own size under the still-water level.
+        let sunk = z.iter().filter(|&&zi| zi + half < -f.size).count();
+        (sunk > 0).then(|| {
+            Diagnostic::warning(
+                "design/sunk-float",
+                &f.location,
+                format!(
+                    "{} is under water at static equilibrium: {sunk} of {} nodes have their top \
+                     more than its size {} m below the still-water level (deepest top at z = \
+                     {:.3} m); it no longer floats. Give it more volume or hang less weight on \
+                     it{}",
+                    f.label,
+                    z.len(),
+                    f.size,
+                    lowest + half,
+                    if f.label.starts_with("buoy") {
+                        "; if it is meant to be under water, set `submerged = true`"
+                    } else {
+                        ""
+                    }
+                ),
+            )
+        })
+    }
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn checks() -> DesignChecks {
+        DesignChecks {
+            floaters: vec![Floater {
+                label: "buoy 'b'".into(),
+                location: "b".into(),
+                nodes: vec![2],
+                size: 1.0,
+                submerged: false,
+            }],
+            lines: vec![LineLength {
+                name: "m".into(),
+                anchor: 0,
+                fairlead: 1,
+                unstretched: 10.0,
+            }],
+            seabed_z: Some(-20.0),
+        }
+    }
+
+    #[test]
+    fn each_warning_fires_at_its_threshold_only() {
+        let c = checks();
+        let codes = |x: &[[f64; 3]]| -> Vec<&'static str> {
+            c.at_equilibrium(x).iter().map(|d| d.code).collect()
+        };
+        // taut as built: 10.05 m apart; slack: 10 m apart
+        let p = |x: [f64; 3]| Point3::from(x);
+        let taut = [
+            p([0.0, 0.0, -20.0]),
+            p([6.03, 0.0, -11.96]),
+            p([6.0, 0.0, 0.0]),
+        ];
+        let built: Vec<_> = c.as_built(&taut).iter().map(|d| d.code).collect();
+        assert_eq!(built, vec!["design/taut-line"]);
+        let slack = [
+            p([0.0, 0.0, -20.0]),
+            p([6.0, 0.0, -12.0]),
+            p([6.0, 0.0, 0.0]),
+        ];
+        assert!(c.as_built(&slack).is_empty());
+        // buoy floating
+        assert!(codes(&[[0.0, 0.0, -20.0], [6.0, 0.0, -12.0], [6.0, 0.0, 0.0]]).is_empty());
+        // top exactly one diameter under water: not yet; a bit deeper: sunk
+        assert!(codes(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.5 + 1e-9]]).is_empty());
+        assert_eq!(
+            codes(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -1.6]]),
+            vec!["design/sunk-float"]
+        );
+        // on the seabed: that, not sunk
+        assert_eq!(
+            codes(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -19.5]]),
+            vec!["design/float-on-seabed"]
+        );
+        let mut c2 = checks();
+        c2.floaters[0].submerged = true;
+        assert!(
+            c2.at_equilibrium(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -5.0]])
+                .is_empty()
+        );
+    }
+}
