@@ -2,7 +2,9 @@
 //!
 //! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`],
 //!   docs/theory/cages.md#cage-types to #multiple-cages), a flat net panel builder
-//!   ([`PanelParams`], #flat-net-panel) and a single-line builder ([`LineParams`], #single-line).
+//!   ([`PanelParams`], #flat-net-panel), a single-line builder ([`LineParams`], #single-line)
+//!   and a farm builder: cages on a square mooring grid with frame, bridles, buoys and anchor
+//!   lines ([`FarmParams`], #farm-grid).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
 //! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]), and the
 //!   run output, a multiblock series with one named block per object and kind ([`vtm`]).
@@ -40,6 +42,7 @@
 
 pub mod cage;
 pub mod error;
+pub mod farm;
 pub mod gmsh;
 pub mod line;
 pub mod mesh;
@@ -50,6 +53,7 @@ pub mod vtm;
 
 pub use cage::{CageParams, CageType, ResolvedCage};
 pub use error::{FilePos, MeshError, Result};
+pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use line::{Fairlead, LineParams, LineShape};
 pub use mesh::{

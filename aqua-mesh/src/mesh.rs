@@ -68,11 +68,16 @@ pub enum Role {
     PanelRight,
     /// A user node group from gmsh (`nodes:<name>`). Nodes.
     UserNodes,
+    /// Coupling plates of a farm grid (where frame lines, bridles and anchor lines meet).
+    /// Nodes.
+    Plates,
+    /// Buoy nodes of a farm grid. Nodes.
+    Buoys,
 }
 
 impl Role {
     /// All roles, in id order.
-    pub const ALL: [Role; 25] = [
+    pub const ALL: [Role; 27] = [
         Role::NetTwines,
         Role::NetPanels,
         Role::TopRing,
@@ -98,6 +103,8 @@ impl Role {
         Role::PanelLeft,
         Role::PanelRight,
         Role::UserNodes,
+        Role::Plates,
+        Role::Buoys,
     ];
 
     /// Stable numeric id (written to VTK `role_id`).
@@ -133,6 +140,8 @@ impl Role {
             Role::PanelLeft => "panel_left",
             Role::PanelRight => "panel_right",
             Role::UserNodes => "user_nodes",
+            Role::Plates => "plates",
+            Role::Buoys => "buoys",
         }
     }
 
@@ -373,6 +382,8 @@ pub enum ObjectKind {
     Line,
     /// A mesh imported from gmsh.
     Gmsh,
+    /// The frame of a farm grid (frame lines, bridles, pendants, plates, buoys).
+    Frame,
 }
 
 /// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).
@@ -477,10 +488,11 @@ impl Mesh {
     }
 
     /// Resolve a scene group reference: `<group>` (all objects), `<name>/<group>` (one object)
-    /// or `<name>#<k>/<group>` (copy k). Returns the node ids, sorted and unique; `None` if no
-    /// group matches.
+    /// or `<name>#<k>/<group>` (copy k). The group name is what follows the last `/`, so object
+    /// names may hold `/` (a farm's `farm/cage_r1c2`). Returns the node ids, sorted and unique;
+    /// `None` if no group matches.
     pub fn resolve_nodes(&self, reference: &str) -> Option<Vec<usize>> {
-        let (obj, copy, group) = match reference.split_once('/') {
+        let (obj, copy, group) = match reference.rsplit_once('/') {
             None => (None, None, reference),
             Some((o, g)) => match o.split_once('#') {
                 Some((name, k)) => (Some(name), Some(k.parse::<u32>().ok()?), g),
@@ -615,6 +627,7 @@ impl Mesh {
                         ObjectKind::Panel => "panel".into(),
                         ObjectKind::Line => "line".into(),
                         ObjectKind::Gmsh => "gmsh".into(),
+                        ObjectKind::Frame => "frame".into(),
                     },
                     copies: o.origins.len(),
                     counts: o.counts.clone(),
