@@ -89,9 +89,9 @@ impl CageShadow {
         }
         let u = [current[0] / speed, current[1] / speed];
         let inv = 1.0 / nodes.len() as f64;
-        let o = nodes.iter().fold([0.0, 0.0], |a, p| {
-            [a[0] + p[0] * inv, a[1] + p[1] * inv]
-        });
+        let o = nodes
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] * inv, a[1] + p[1] * inv]);
         let half_width = nodes
             .iter()
             .map(|p| lateral(o, u, [p[0], p[1]]).1)
@@ -159,9 +159,11 @@ mod tests {
         assert_eq!(s.ratio_at([30.0, 10.1]), 1.0);
         assert_eq!(s.ratio_at([-30.0, 0.0]), 1.0);
         // Several upstream cages multiply; a cage never shadows itself.
-        let s2 = CageShadow::of_nodes(CageWakeSource { group: 1, ..src }, &ring(40.0, 0.0, 10.0), [
-            0.5, 0.0,
-        ])
+        let s2 = CageShadow::of_nodes(
+            CageWakeSource { group: 1, ..src },
+            &ring(40.0, 0.0, 10.0),
+            [0.5, 0.0],
+        )
         .unwrap();
         let both = [s, s2];
         assert!((cage_ratio(&both, 2, [80.0, 0.0]) - 0.64 * 0.64).abs() < 1e-15);

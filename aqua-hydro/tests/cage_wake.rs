@@ -69,7 +69,11 @@ fn forces(centres: &[[f64; 2]], u: f64, cage_wake: bool) -> Vec<[f64; 3]> {
         .map(|c| add_cage(&mut x, &mut els, c[0], c[1]))
         .collect();
     let groups = els.wake_groups.clone();
-    let sea = Sea::new(Constants::default(), Current::uniform([u, 0.0, 0.0]), Waves::None);
+    let sea = Sea::new(
+        Constants::default(),
+        Current::uniform([u, 0.0, 0.0]),
+        Waves::None,
+    );
     let mut asm = LoadAssembly::new(sea, x.len(), els).unwrap();
     if cage_wake {
         let all: Vec<usize> = (0..groups.len()).collect();
@@ -93,7 +97,8 @@ fn forces(centres: &[[f64; 2]], u: f64, cage_wake: bool) -> Vec<[f64; 3]> {
     ranges
         .into_iter()
         .map(|r| {
-            f[r].iter().fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+            f[r].iter()
+                .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]])
         })
         .collect()
 }
@@ -114,7 +119,11 @@ fn downstream_cage_sees_the_current_reduced_by_r_squared() {
     let pair = forces(&[[0.0, 0.0], [30.0, 0.0]], U, true);
     let alone_up = forces(&[[0.0, 0.0]], U, false)[0];
     let alone_down_slow = forces(&[[30.0, 0.0]], rc * rc * U, false)[0];
-    assert!(rel(pair[0], alone_up) < 1e-12, "{:?} vs {alone_up:?}", pair[0]);
+    assert!(
+        rel(pair[0], alone_up) < 1e-12,
+        "{:?} vs {alone_up:?}",
+        pair[0]
+    );
     assert!(
         rel(pair[1], alone_down_slow) < 1e-9,
         "{:?} vs {alone_down_slow:?}",
@@ -123,7 +132,11 @@ fn downstream_cage_sees_the_current_reduced_by_r_squared() {
     assert!(pair[1][0] < pair[0][0] && pair[1][0] > 0.0);
     // Drag goes with the square of the speed: the ratio is close to r_c⁴ (Re effects aside).
     let ratio = pair[1][0] / pair[0][0];
-    assert!((ratio / rc.powi(4) - 1.0).abs() < 0.05, "{ratio} vs {}", rc.powi(4));
+    assert!(
+        (ratio / rc.powi(4) - 1.0).abs() < 0.05,
+        "{ratio} vs {}",
+        rc.powi(4)
+    );
     // Three in line: the factors multiply.
     let three = forces(&[[0.0, 0.0], [30.0, 0.0], [60.0, 0.0]], U, true);
     let third = forces(&[[60.0, 0.0]], rc.powi(4) * U, false)[0];
@@ -153,9 +166,14 @@ fn repeated_updates_do_not_compound() {
     add_cage(&mut x, &mut els, 0.0, 0.0);
     add_cage(&mut x, &mut els, 30.0, 0.0);
     let groups = els.wake_groups.clone();
-    let sea = Sea::new(Constants::default(), Current::uniform([U, 0.0, 0.0]), Waves::None);
+    let sea = Sea::new(
+        Constants::default(),
+        Current::uniform([U, 0.0, 0.0]),
+        Waves::None,
+    );
     let mut asm = LoadAssembly::new(sea, x.len(), els).unwrap();
-    asm.set_cage_wake(CageWake::among(&groups, &[0, 1])).unwrap();
+    asm.set_cage_wake(CageWake::among(&groups, &[0, 1]))
+        .unwrap();
     let downstream = asm.n_elements() - 1;
     asm.update_wake(0.0, &x).unwrap();
     let first = asm.cage_wake_factor(downstream);
@@ -169,7 +187,13 @@ fn repeated_updates_do_not_compound() {
     let moved: Vec<[f64; 3]> = x
         .iter()
         .enumerate()
-        .map(|(i, p)| if i >= x.len() / 2 { [p[0], p[1] + 20.0, p[2]] } else { *p })
+        .map(|(i, p)| {
+            if i >= x.len() / 2 {
+                [p[0], p[1] + 20.0, p[2]]
+            } else {
+                *p
+            }
+        })
         .collect();
     asm.update_wake(0.0, &moved).unwrap();
     assert_eq!(asm.cage_wake_factor(downstream), 1.0);
@@ -183,5 +207,8 @@ fn repeated_updates_do_not_compound() {
         })
         .unwrap_err()
         .to_string();
-    assert!(e.contains("cage_wake.sources[0].group") && e.contains('7'), "{e}");
+    assert!(
+        e.contains("cage_wake.sources[0].group") && e.contains('7'),
+        "{e}"
+    );
 }

@@ -24,11 +24,11 @@
 //! is made by a small function ([`anchor_line`], the buoy list) so that the buoy and
 //! segmented-line builders can replace them.
 
+use crate::Mesh;
 use crate::cage::CageParams;
 use crate::error::{MeshError, Result};
 use crate::line::catenary_nodes;
 use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
-use crate::Mesh;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -291,8 +291,15 @@ impl FarmParams {
                 cages.push(cname);
             }
         }
-        let (frame_mesh, buoys_local, welds) =
-            frame_object(&format!("{name}/frame"), &grid, &frame, &bridle, el, &mesh, &collars)?;
+        let (frame_mesh, buoys_local, welds) = frame_object(
+            &format!("{name}/frame"),
+            &grid,
+            &frame,
+            &bridle,
+            el,
+            &mesh,
+            &collars,
+        )?;
         let off = mesh.append(frame_mesh);
         weld_tail(&mut mesh, &welds);
         let buoys = buoys_local
@@ -329,7 +336,11 @@ impl FarmParams {
         }
         parts.push(("rope", rope, self.anchor_length - chain_len));
         for (tag, i, j, dir) in grid.outer_plates() {
-            let k = if matches!(tag, 'e' | 'w') { j + 1 } else { i + 1 };
+            let k = if matches!(tag, 'e' | 'w') {
+                j + 1
+            } else {
+                i + 1
+            };
             let aname = format!("{name}/anchor_{tag}{k}");
             let plate = grid.plate_position(i, j);
             let a = plate + dir * distance;
@@ -409,7 +420,11 @@ fn line_section(
             ))
         }
     };
-    need("diameter", t.diameter.is_some(), "required: the nominal diameter [m]")?;
+    need(
+        "diameter",
+        t.diameter.is_some(),
+        "required: the nominal diameter [m]",
+    )?;
     need(
         "ea",
         t.ea.is_some() || t.youngs_modulus.is_some(),
@@ -527,12 +542,20 @@ fn straight(b: &mut MeshBuilder, g: usize, from: usize, to: usize, el: f64) {
 /// The collar node of `ring` that points most towards `dir` from `centre`; exact ties (a
 /// corner between two nodes) go to the node farther from the centre line y = centre.y, then
 /// x = centre.x, so that mirror-symmetric farms get mirror-symmetric bridles.
-fn collar_node(mesh: &Mesh, ring: &[usize], centre: Point3<f64>, dir: Vector3<f64>) -> Option<usize> {
+fn collar_node(
+    mesh: &Mesh,
+    ring: &[usize],
+    centre: Point3<f64>,
+    dir: Vector3<f64>,
+) -> Option<usize> {
     let key = |n: usize| {
         let d = mesh.nodes[n] - centre;
         (d.dot(&dir), d.y.abs(), d.x.abs())
     };
-    let best = ring.iter().map(|&n| key(n).0).fold(f64::NEG_INFINITY, f64::max);
+    let best = ring
+        .iter()
+        .map(|&n| key(n).0)
+        .fold(f64::NEG_INFINITY, f64::max);
     let tol = 1e-9 * best.abs().max(1.0);
     ring.iter()
         .copied()
@@ -597,8 +620,8 @@ fn frame_object(
             let plate = grid.plate_position(i, j);
             let dir = Vector3::new(plate.x - centre.x, plate.y - centre.y, 0.0);
             let target = collar_node(mesh, ring, *centre, dir).ok_or_else(|| {
-                    MeshError::inconsistent(name, "a farm cage has no top_ring to hang bridles on")
-                })?;
+                MeshError::inconsistent(name, "a farm cage has no top_ring to hang bridles on")
+            })?;
             ends.push((grid.plate(i, j), target));
         }
     }
@@ -778,7 +801,9 @@ mod tests {
     #[test]
     fn counts_names_positions_and_joints() {
         let (r, c) = (2usize, 3usize);
-        let f = farm(r as u32, c as u32).build(&cage(), Some(-40.0)).unwrap();
+        let f = farm(r as u32, c as u32)
+            .build(&cage(), Some(-40.0))
+            .unwrap();
         let n = f.counts("f");
         assert_eq!(n.cages, r * c);
         assert_eq!(n.plates, (r + 1) * (c + 1));
@@ -788,7 +813,13 @@ mod tests {
         assert_eq!(n.frame_elements, (r * (c + 1) + c * (r + 1)) * 8);
         let m = &f.mesh;
         let names: Vec<&str> = m.objects.iter().map(|o| o.name.as_str()).collect();
-        for want in ["f/cage_r1c1", "f/cage_r2c3", "f/frame", "f/anchor_n3", "f/anchor_w1"] {
+        for want in [
+            "f/cage_r1c1",
+            "f/cage_r2c3",
+            "f/frame",
+            "f/anchor_n3",
+            "f/anchor_w1",
+        ] {
             assert!(names.contains(&want), "{want} not in {names:?}");
         }
         // Plates on the grid, centred on the origin.
@@ -798,7 +829,9 @@ mod tests {
         assert!((p0 - Point3::new(-60.0, -40.0, -5.0)).norm() < 1e-12);
         // Cage r1c2 centred in its cell, collar at z = 0 and free.
         let ring = m.resolve_nodes("f/cage_r1c2/top_ring").unwrap();
-        let mean = ring.iter().fold(Vector3::zeros(), |a, &i| a + m.nodes[i].coords)
+        let mean = ring
+            .iter()
+            .fold(Vector3::zeros(), |a, &i| a + m.nodes[i].coords)
             / ring.len() as f64;
         assert!((mean - Vector3::new(0.0, -20.0, 0.0)).norm() < 1e-9);
         let fixed = m.fixed_nodes();
@@ -817,14 +850,26 @@ mod tests {
             .collect();
         assert!(ends.iter().filter(|nd| ring.contains(nd)).count() == 4);
         // Anchor lines: chain then rope, the fairlead is the plate.
-        let ai = m.objects.iter().position(|o| o.name == "f/anchor_e1").unwrap() as u32;
+        let ai = m
+            .objects
+            .iter()
+            .position(|o| o.name == "f/anchor_e1")
+            .unwrap() as u32;
         let fair = m.group(ai, "fairlead").unwrap().nodes[0];
         assert!(plates.contains(&fair));
         let chain = m.group(ai, "chain").unwrap();
-        let l: f64 = chain.lines.iter().map(|&e| m.lines[e].rest_length.unwrap()).sum();
+        let l: f64 = chain
+            .lines
+            .iter()
+            .map(|&e| m.lines[e].rest_length.unwrap())
+            .sum();
         assert!((l - 30.0).abs() < 1e-9);
         let rope = m.group(ai, "rope").unwrap();
-        let l: f64 = rope.lines.iter().map(|&e| m.lines[e].rest_length.unwrap()).sum();
+        let l: f64 = rope
+            .lines
+            .iter()
+            .map(|&e| m.lines[e].rest_length.unwrap())
+            .sum();
         assert!((l - 90.0).abs() < 1e-9);
         // Nothing dangles: every node is used by an element.
         let mut used = vec![false; m.nodes.len()];

@@ -25,8 +25,10 @@ struct Solved {
 /// The example farm, statics only, solved tightly; `edit` changes the text first.
 fn solve(name: &str, edit: impl Fn(String) -> String) -> Solved {
     let dir = scratch(name);
-    let text = example("farm.toml")
-        .replace("kind = \"static+dynamic\"", "kind = \"static\"\n\n[analysis.static]\ntol = 1e-10");
+    let text = example("farm.toml").replace(
+        "kind = \"static+dynamic\"",
+        "kind = \"static\"\n\n[analysis.static]\ntol = 1e-10",
+    );
     let path = dir.join("farm.toml");
     std::fs::write(&path, edit(text)).unwrap();
     let prep = prepare(&path).unwrap();
@@ -119,7 +121,7 @@ fn farm_in_a_current_along_a_grid_axis() {
         "farm statics: {} iterations, {:.2} s, residual {:.2e}",
         r.iterations, wall, r.relative_residual
     );
-    assert!(r.iterations <= 200, "{} iterations", r.iterations);
+    assert!(r.iterations <= 300, "{} iterations", r.iterations);
     let out = &sol.outputs;
     let b = &prep.built;
 
@@ -177,18 +179,63 @@ fn farm_in_a_current_along_a_grid_axis() {
         })
         .collect();
     assert_eq!(load.len(), 14);
-    let max_w = load.iter().filter(|(k, _)| k.starts_with("anchor_w")).map(|(_, v)| *v);
+    let max_w = load
+        .iter()
+        .filter(|(k, _)| k.starts_with("anchor_w"))
+        .map(|(_, v)| *v);
     let min_w = max_w.clone().fold(f64::INFINITY, f64::min);
-    let others = load.iter().filter(|(k, _)| !k.starts_with("anchor_w")).map(|(_, v)| *v);
+    let others = load
+        .iter()
+        .filter(|(k, _)| !k.starts_with("anchor_w"))
+        .map(|(_, v)| *v);
     let max_other = others.fold(0.0, f64::max);
     assert!(min_w > max_other, "{load:?}");
-    let e_max = load.iter().filter(|(k, _)| k.starts_with("anchor_e")).map(|(_, v)| *v);
+    let e_max = load
+        .iter()
+        .filter(|(k, _)| k.starts_with("anchor_e"))
+        .map(|(_, v)| *v);
     assert!(e_max.fold(0.0, f64::max) < min_w);
+
+    // The collars float: no node submerged by more than the pipe diameter (0.35 m). Without
+    // bending stiffness (issue 12) a collar is a pin-jointed ring: the nodes between the
+    // heavily loaded ones ride up by a few decimetres (measured up to 0.45 m), held by the
+    // buoyancy of their wet neighbouring elements. The plates hang clear of the seabed.
+    let z = |r: &str| {
+        let n = aqua_sim::build::resolve_ref(&b.mesh, r).unwrap();
+        let zs: Vec<f64> = n.iter().map(|&i| sol.state.x[i][2]).collect();
+        (
+            zs.iter().copied().fold(f64::INFINITY, f64::min),
+            zs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    };
+    let mut collars = Vec::new();
+    for r in 1..=2 {
+        for c in 1..=3 {
+            let (lo, hi) = z(&format!("farm/cage_r{r}c{c}/top_ring"));
+            eprintln!("collar r{r}c{c}: z from {lo:.3} to {hi:.3} m");
+            collars.push((r, c, lo, hi));
+        }
+    }
+    for (r, c, lo, hi) in collars {
+        assert!(lo > -0.35 && hi < 1.0, "collar r{r}c{c}: {lo} .. {hi}");
+    }
+    let (lo, hi) = z("farm/frame/plates");
+    eprintln!("plates: z from {lo:.3} to {hi:.3} m");
+    assert!(lo > -40.0 + 5.0 && hi < 0.0, "plates {lo} .. {hi}");
+    let (lo, hi) = z("farm/frame/buoys");
+    eprintln!("buoys: z from {lo:.3} to {hi:.3} m");
+    assert!(lo > -0.6 && hi < 0.6, "buoys {lo} .. {hi}");
 
     // Downstream cages' drag below the upstream ones' (cage-to-cage wake on).
     for r in 1..=2 {
         let d = |c: usize| drag[&format!("farm/cage_r{r}c{c}")];
-        assert!(d(1) > d(2) && d(2) > d(3), "row {r}: {} {} {}", d(1), d(2), d(3));
+        assert!(
+            d(1) > d(2) && d(2) > d(3),
+            "row {r}: {} {} {}",
+            d(1),
+            d(2),
+            d(3)
+        );
     }
 }
 
@@ -202,7 +249,10 @@ fn cage_wake_off_leaves_the_cages_in_the_free_current() {
     // Upstream cages see the free current either way; downstream ones much less with wake.
     let c = |m: &HashMap<String, f64>, k: usize| m[&format!("farm/cage_r1c{k}")];
     assert!(c(&on, 3) < 0.8 * c(&off, 3), "{on:?} vs {off:?}");
-    assert!((c(&on, 1) / c(&off, 1) - 1.0).abs() < 0.1, "{on:?} vs {off:?}");
+    assert!(
+        (c(&on, 1) / c(&off, 1) - 1.0).abs() < 0.1,
+        "{on:?} vs {off:?}"
+    );
 }
 
 #[test]
@@ -213,7 +263,7 @@ fn bad_farm_input_names_file_key_and_valid_values() {
         std::fs::write(&path, edit(example("farm.toml"))).unwrap();
         let e = match prepare(&path) {
             Ok(_) => panic!("{name}: accepted"),
-            Err(e) => format!("{e:#}"),
+            Err(e) => e.chain(),
         };
         assert!(e.contains(&format!("{name}.toml")), "{name}: {e}");
         for w in want {
@@ -237,7 +287,7 @@ fn bad_farm_input_names_file_key_and_valid_values() {
     );
     check(
         "missing-section",
-        &|t| t.replace("[farm.bridle]             # 40 mm polysteel\ndiameter = 0.040\n", "[farm.bridle]\n"),
+        &|t| t.replace("diameter = 0.040\n", ""),
         &["bridle.diameter", "required"],
     );
     check(
@@ -252,7 +302,12 @@ fn bad_farm_input_names_file_key_and_valid_values() {
     );
     check(
         "fixed-collar",
-        &|t| t.replace("tip_weight = 300.0", "tip_weight = 300.0\nfixed = [\"top_ring\"]"),
+        &|t| {
+            t.replace(
+                "tip_weight = 300.0",
+                "tip_weight = 300.0\nfixed = [\"top_ring\"]",
+            )
+        },
         &["cage.fixed", "collars float"],
     );
 }

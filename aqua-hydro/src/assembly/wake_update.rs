@@ -113,9 +113,8 @@ impl LoadAssembly {
                 ));
             }
         }
-        let member = |g: Option<usize>| {
-            g.filter(|g| cage_wake.sources.iter().any(|s| s.group == *g))
-        };
+        let member =
+            |g: Option<usize>| g.filter(|g| cage_wake.sources.iter().any(|s| s.group == *g));
         self.cage_receivers = self
             .elems
             .iter()
@@ -151,7 +150,9 @@ impl LoadAssembly {
                 pts.clear();
                 pts.extend(st.net_nodes.iter().map(|&n| x[n]));
                 let zc = pts.iter().map(|p| p[2]).sum::<f64>() / pts.len().max(1) as f64;
-                let o = pts.iter().fold([0.0; 3], |a, p| [a[0] + p[0], a[1] + p[1], 0.0]);
+                let o = pts
+                    .iter()
+                    .fold([0.0; 3], |a, p| [a[0] + p[0], a[1] + p[1], 0.0]);
                 let k = 1.0 / pts.len().max(1) as f64;
                 let uc = unramped_current(&self.sea, [o[0] * k, o[1] * k, zc], t);
                 CageShadow::of_nodes(*s, &pts, [uc[0], uc[1]])

@@ -176,7 +176,10 @@ fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> 
                         seabed_stiffness: 0.0,
                     })
                     .map_err(|e| {
-                        SimError::at(format!("{file}: line {}: [[farm]] {} buoy", f.line, f.name), e)
+                        SimError::at(
+                            format!("{file}: line {}: [[farm]] {} buoy", f.line, f.name),
+                            e,
+                        )
                     })?;
             }
             st.hydro_points.push(PointElement {

@@ -16,8 +16,8 @@ use aqua_hydro::assembly::{
     LineElement as HydroLine, NetPanel, PanelNodes as HydroPanelNodes, PointElement, WakeGroup,
 };
 use aqua_hydro::{
-    CageWake, LineProps, MorisonModel, MorisonModelId, NetProps, ScreenModel, WakeModelId, WakeSpec,
-    WakeUpdate,
+    CageWake, LineProps, MorisonModel, MorisonModelId, NetProps, ScreenModel, WakeModelId,
+    WakeSpec, WakeUpdate,
 };
 use aqua_mesh::{Mesh, NetGrouping, ObjectKind, PanelNodes, Role, Section};
 use std::collections::{HashMap, HashSet};
