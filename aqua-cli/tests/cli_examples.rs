@@ -44,7 +44,7 @@ fn every_example_runs_as_documented() {
             let (code, out, err) = aqua(&["sweep", path]);
             assert_eq!(code, 0, "{name}: {err}");
             assert!(out.contains("cases of"), "{name}: {out}");
-        } else if !["cage", "panel", "line", "mesh"]
+        } else if !["cage", "panel", "line", "mesh", "farm"]
             .iter()
             .any(|k| table.contains_key(*k))
         {

@@ -18,7 +18,9 @@
 //! - Point bodies: F = φ_A·½ρ_w(C_D A)|U_r|U_r + φ_V·[ρ_w V(1 + C_a)ā_f + ρ_w g V ẑ], φ_V, φ_A
 //!   the wet fractions of volume and projected area (a prism's linear law, or a sphere's cap).
 //! - Wake: r = 1, clamp(f), 1 − 0.46·C_D0 (Løland) or clamp((c + 0.05 − 0.38Sn)/(c + 0.05))
-//!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]).
+//!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]); between
+//!   cages, r_c² of every other cage c with the element in its downstream strip of half-width
+//!   R_c, the factors multiplying ([`cage_wake`]).
 //! - Linearisation: with J_w = ∂F/∂U_r of an element of n nodes and equal force shares,
 //!   ∂f_i/∂v_j = −J_w/n² for every node pair
 //!   (docs/theory/hydrodynamics.md#distribution-to-nodes).
@@ -27,6 +29,7 @@
 //! output layout.
 
 pub mod assembly;
+pub mod cage_wake;
 pub mod coefficients;
 pub mod cylinder;
 pub mod error;
@@ -42,6 +45,7 @@ pub use assembly::{
     Block, Diagnostics, ElementOutput, Elements, LineElement, LoadAssembly, NetPanel, NetSummary,
     Outputs, PanelNodes, PointElement, WakeGroup,
 };
+pub use cage_wake::{CageShadow, CageWake, CageWakeSource};
 pub use error::HydroError;
 pub use line::LineProps;
 pub use morison::{MorisonCoeffs, MorisonModel, MorisonModelId};

@@ -3,7 +3,9 @@
 //! * Parametric cage builders **CCT, CCS, CSM, SSM** ([`CageParams`],
 //!   docs/theory/cages.md#cage-types to #multiple-cages), a flat net panel builder
 //!   ([`PanelParams`], #flat-net-panel), a single-line builder ([`LineParams`], #single-line;
-//!   one section or [`LineSegment`]s) and the node of a free buoy ([`buoy_node`]).
+//!   one section or [`LineSegment`]s), the node of a free buoy ([`buoy_node`]) and a farm
+//!   builder: cages on a square mooring grid with frame, bridles, buoys and anchor lines
+//!   ([`FarmParams`], #farm-grid).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
 //! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]), and the
 //!   run output, a multiblock series with one named block per object and kind ([`vtm`]).
@@ -43,6 +45,7 @@ pub mod buoy;
 pub mod cage;
 pub mod collar;
 pub mod error;
+pub mod farm;
 pub mod gmsh;
 pub mod line;
 pub mod mesh;
@@ -55,6 +58,7 @@ pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, CageType, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
+pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use line::{Fairlead, LineParams, LineSegment, LineShape};
 pub use mesh::{

@@ -72,11 +72,16 @@ pub enum Role {
     OuterRing,
     /// Brackets joining the two pipes of a collar. Lines.
     Brackets,
+    /// Coupling plates of a farm grid (where frame lines, bridles and anchor lines meet).
+    /// Nodes.
+    Plates,
+    /// Buoy nodes of a farm grid. Nodes.
+    Buoys,
 }
 
 impl Role {
     /// All roles, in id order.
-    pub const ALL: [Role; 27] = [
+    pub const ALL: [Role; 29] = [
         Role::NetTwines,
         Role::NetPanels,
         Role::TopRing,
@@ -104,6 +109,8 @@ impl Role {
         Role::UserNodes,
         Role::OuterRing,
         Role::Brackets,
+        Role::Plates,
+        Role::Buoys,
     ];
 
     /// Stable numeric id (written to VTK `role_id`).
@@ -141,6 +148,8 @@ impl Role {
             Role::UserNodes => "user_nodes",
             Role::OuterRing => "outer_ring",
             Role::Brackets => "brackets",
+            Role::Plates => "plates",
+            Role::Buoys => "buoys",
         }
     }
 
@@ -421,6 +430,8 @@ pub enum ObjectKind {
     Gmsh,
     /// The node of a free buoy.
     Buoy,
+    /// The frame of a farm grid (frame lines, bridles, pendants, plates, buoys).
+    Frame,
 }
 
 /// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).
@@ -525,10 +536,11 @@ impl Mesh {
     }
 
     /// Resolve a scene group reference: `<group>` (all objects), `<name>/<group>` (one object)
-    /// or `<name>#<k>/<group>` (copy k). Returns the node ids, sorted and unique; `None` if no
-    /// group matches.
+    /// or `<name>#<k>/<group>` (copy k). The group name is what follows the last `/`, so object
+    /// names may hold `/` (a farm's `farm/cage_r1c2`). Returns the node ids, sorted and unique;
+    /// `None` if no group matches.
     pub fn resolve_nodes(&self, reference: &str) -> Option<Vec<usize>> {
-        let (obj, copy, group) = match reference.split_once('/') {
+        let (obj, copy, group) = match reference.rsplit_once('/') {
             None => (None, None, reference),
             Some((o, g)) => match o.split_once('#') {
                 Some((name, k)) => (Some(name), Some(k.parse::<u32>().ok()?), g),
@@ -664,6 +676,7 @@ impl Mesh {
                         ObjectKind::Line => "line".into(),
                         ObjectKind::Gmsh => "gmsh".into(),
                         ObjectKind::Buoy => "buoy".into(),
+                        ObjectKind::Frame => "frame".into(),
                     },
                     copies: o.origins.len(),
                     counts: o.counts.clone(),

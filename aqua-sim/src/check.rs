@@ -48,6 +48,18 @@ pub struct Cost {
     pub estimated_seconds: f64,
 }
 
+/// Counts per part of one farm.
+#[derive(Debug, Serialize)]
+pub struct FarmReport {
+    /// Farm name.
+    pub name: String,
+    /// Counts.
+    #[serde(flatten)]
+    pub counts: aqua_mesh::FarmCounts,
+    /// Cage-to-cage wake among its cages.
+    pub cage_wake: bool,
+}
+
 /// The whole report.
 #[derive(Debug, Serialize)]
 pub struct Report {
@@ -55,6 +67,8 @@ pub struct Report {
     pub scene: String,
     /// Mesh summary (counts per group, λ, diameters).
     pub mesh: aqua_mesh::MeshSummary,
+    /// Counts per part of every `[[farm]]`.
+    pub farms: Vec<FarmReport>,
     /// Physics.
     pub physics: Vec<Physics>,
     /// Cost.
@@ -71,6 +85,15 @@ pub fn report(prep: &Prepared) -> Result<Report> {
     Ok(Report {
         scene: prep.scene.name.clone(),
         mesh: built.mesh.summary(),
+        farms: built
+            .farms
+            .iter()
+            .map(|f| FarmReport {
+                name: f.name.clone(),
+                counts: f.counts.clone(),
+                cage_wake: f.cage_wake,
+            })
+            .collect(),
         physics: physics(prep, ncomp),
         cost: cost(prep, ncomp),
         warnings: built
@@ -169,6 +192,17 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
                     "{} cage nets shadow their downstream half",
                     el.wake_groups.len()
                 )
+            },
+        },
+        Physics {
+            name: "cage-to-cage wake",
+            active: !built.cage_wake.is_empty() && sea.has_current(),
+            why: match (built.cage_wake.sources.len(), sea.has_current()) {
+                (0, _) => "off (a [[farm]] turns it on; [wake] cage_to_cage for [[cage]]s)".into(),
+                (_, false) => "it reduces the current, and there is none: skipped".into(),
+                (n, true) => format!(
+                    "{n} cages reduce the current behind them by r_c^2 (from the as-built geometry)"
+                ),
             },
         },
         Physics {

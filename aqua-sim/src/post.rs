@@ -130,8 +130,8 @@ pub fn net_force_and_wake(
     }
     let mesh = &built.mesh;
     let mut wake = vec![1.0; mesh.lines.len() + mesh.panels.len()];
-    for (cell, w) in built.load_cells.iter().zip(assembly.wake()) {
-        wake[cell.cell] = w.factor;
+    for (e, cell) in built.load_cells.iter().enumerate() {
+        wake[cell.cell] = assembly.wake_factor(e);
     }
     (f, wake)
 }

@@ -113,12 +113,16 @@ pub struct Simulation<'p> {
 /// The water loads of a prepared scene, and the load models' warnings.
 pub fn water_loads(prep: &Prepared, phase: Phase) -> Result<(WaterLoads, Vec<Diagnostic>)> {
     let built = &prep.built;
-    let assembly = LoadAssembly::new(
+    let file = || prep.scene.path.display().to_string();
+    let mut assembly = LoadAssembly::new(
         built.sea.clone(),
         built.model.n_nodes(),
         built.elements.clone(),
     )
-    .map_err(|e| SimError::at(prep.scene.path.display().to_string(), e))?;
+    .map_err(|e| SimError::at(file(), e))?;
+    assembly
+        .set_cage_wake(built.cage_wake.clone())
+        .map_err(|e| SimError::at(file(), e))?;
     let diagnostics = Diagnostic::warnings("hydro/model", "water loads", assembly.warnings());
     Ok((
         WaterLoads::new(assembly, phase, &built.elements),

@@ -12,6 +12,8 @@
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
 //! [[mesh]]                # aqua-mesh GmshParams (cages.md#gmsh-import) + net.* hydro keys
+//! [[farm]]                # aqua-mesh FarmParams (cages.md#farm-grid); [farm.cage] as [[cage]]
+//! [wake]                  # cage_to_cage (hydrodynamics.md#cage-to-cage-wake)
 //! [[group]]               # per element group: section overrides + Morison keys
 //! [[point]]               # point bodies on node groups (fem.md#loads)
 //! [[buoy]]                # buoys and coupling plates (crate::buoy, farm.md#buoys)
@@ -28,7 +30,7 @@ use aqua_fem::{DynamicSettings, ExplicitScheme, ExplicitSettings, MassMatrix, St
 use aqua_hydro::morison::MorisonModelId;
 use aqua_hydro::screen::ScreenModelId;
 use aqua_hydro::wake::WakeSpec;
-use aqua_mesh::{CageParams, GmshParams, LineParams, PanelParams, SectionOverride};
+use aqua_mesh::{CageParams, FarmParams, GmshParams, LineParams, PanelParams, SectionOverride};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -508,6 +510,26 @@ pub struct MeshSpec {
     pub net_hydro: NetHydro,
 }
 
+/// A farm: the grid keys (aqua-mesh) and the cage used in every slot with its net keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FarmSpec {
+    /// Grid, frame, bridles, buoys and anchor lines (aqua-mesh).
+    #[serde(flatten)]
+    pub params: FarmParams,
+    /// `[farm.cage]`: the cage of every slot.
+    pub cage: CageSpec,
+}
+
+/// `[wake]`: scene-wide wake switches (docs/theory/hydrodynamics.md#cage-to-cage-wake).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneWake {
+    /// Cage-to-cage wake among the `[[cage]]` cages and their copies (default false; a
+    /// `[[farm]]` sets its own with `cage_wake`, default true).
+    #[serde(default)]
+    pub cage_to_cage: bool,
+}
+
 /// A parsed, type-checked scene (cross-references are resolved when the model is built).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Scene {
@@ -526,6 +548,10 @@ pub struct Scene {
     pub line: Vec<Located<LineSpec>>,
     /// gmsh meshes.
     pub mesh: Vec<Located<MeshSpec>>,
+    /// Farms.
+    pub farm: Vec<Located<FarmSpec>>,
+    /// Scene-wide wake switches.
+    pub wake: SceneWake,
     /// Group settings.
     pub group: Vec<Located<GroupSpec>>,
     /// Point bodies.
@@ -560,6 +586,10 @@ struct RawScene {
     line: Vec<Spanned<Table>>,
     #[serde(default)]
     mesh: Vec<Spanned<Table>>,
+    #[serde(default)]
+    farm: Vec<Spanned<Table>>,
+    #[serde(default)]
+    wake: SceneWake,
     #[serde(default)]
     group: Vec<Spanned<Table>>,
     #[serde(default)]
@@ -654,6 +684,43 @@ impl Ctx<'_> {
             params.file = dir.join(&params.file);
         }
         Ok(MeshSpec { params, net_hydro })
+    }
+
+    /// A `[[farm]]`: its grid keys and its `[farm.cage]` (typed first, so that a mistake in
+    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s.
+    fn farm(&self, i: usize, line: usize, mut t: Table) -> Result<FarmSpec> {
+        match t.remove("cage") {
+            Some(Value::Table(mut c)) => {
+                let net_hydro = self.net_hydro("farm", i, line, &mut c)?;
+                let cage = self.typed("farm", i, line, "cage", c)?;
+                let params = self.typed("farm", i, line, "", t)?;
+                Ok(FarmSpec {
+                    params,
+                    cage: CageSpec {
+                        params: cage,
+                        net_hydro,
+                    },
+                })
+            }
+            Some(other) => Err(self.err(
+                "farm",
+                i,
+                line,
+                format!(
+                    "cage = {other}: cage must be a table ([farm.cage] with type = \"CSM\", …)"
+                ),
+            )),
+            None => {
+                let _: FarmParams = self.typed("farm", i, line, "", t)?;
+                Err(self.err(
+                    "farm",
+                    i,
+                    line,
+                    "cage is missing: add a [farm.cage] table (the cage of every slot: type = \
+                     \"CCT\", \"CCS\", \"CSM\" or \"SSM\" and its [[cage]] keys)",
+                ))
+            }
+        }
     }
 
     /// A `[[group]]`: its name, Morison keys and section overrides.
@@ -787,6 +854,7 @@ impl RawScene {
         respan(&mut self.panel, base.panel);
         respan(&mut self.line, base.line);
         respan(&mut self.mesh, base.mesh);
+        respan(&mut self.farm, base.farm);
         respan(&mut self.group, base.group);
         respan(&mut self.point, base.point);
         respan(&mut self.buoy, base.buoy);
@@ -831,6 +899,8 @@ impl Ctx<'_> {
                 Ok(LineSpec { params, hydro })
             })?,
             mesh: ctx.each(&raw.mesh, |i, line, t| ctx.gmsh(i, line, t))?,
+            farm: ctx.each(&raw.farm, |i, line, t| ctx.farm(i, line, t))?,
+            wake: raw.wake,
             group: ctx.each(&raw.group, |i, line, t| ctx.group(i, line, t))?,
             point: ctx.each(&raw.point, |i, line, t| ctx.typed("point", i, line, "", t))?,
             buoy: ctx.each(&raw.buoy, |i, line, t| {
@@ -972,8 +1042,15 @@ pub fn scene_keys() -> Vec<String> {
     }
     let mut out = Vec::new();
     walk(&mut Vec::new(), &mut out);
+    // `[farm.cage]` is typed apart from the farm's own keys, as a `[[cage]]`.
+    let cage_keys: Vec<String> = out
+        .iter()
+        .filter(|k| k.starts_with("cage."))
+        .map(|k| format!("farm.{k}"))
+        .collect();
+    out.extend(cage_keys);
     // Keys split off before the mesh types see them.
-    for section in ["cage", "panel", "mesh"] {
+    for section in ["cage", "panel", "mesh", "farm.cage"] {
         out.extend(
             fields_of::<NetHydro>()
                 .into_iter()

@@ -48,6 +48,21 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             k * v.volume
         );
     }
+    for f in &report.farms {
+        let c = &f.counts;
+        println!(
+            "[[farm]] {}: {} cages, {} plates with {} buoys, {} frame-line elements, {} bridles, \
+             {} anchor lines; cage-to-cage wake {}",
+            f.name,
+            c.cages,
+            c.plates,
+            c.buoys,
+            c.frame_elements,
+            c.bridles,
+            c.anchor_lines,
+            if f.cage_wake { "on" } else { "off" }
+        );
+    }
     println!("physics:");
     for p in &report.physics {
         println!(

@@ -21,6 +21,7 @@
 //! All 3×3 blocks are row-major `[[f64; 3]; 3]`, derivatives of the force *on the structure*
 //! (∂f/∂v is negative semi-definite for pure drag; the solver's damping is C_h = −∂f/∂v).
 
+use crate::cage_wake::CageWake;
 use crate::cylinder::RE_CRISIS;
 use crate::error::{HydroError, check_non_negative, check_positive, check_solidity};
 use crate::line::{self, LineProps};
@@ -265,6 +266,12 @@ pub struct LoadAssembly {
     flow: Vec<NodeFlow>,
     wake: Vec<WakeCell>,
     wake_ready: bool,
+    /// Cage-to-cage wake: participating cages, and (element, its wake group) of every
+    /// element of a participating cage.
+    cage_wake: CageWake,
+    cage_receivers: Vec<(usize, usize)>,
+    /// Cage-to-cage ratio per element (1 outside every upstream cage's shadow).
+    cage_factor: Vec<f64>,
     elem_force: Vec<[[f64; 3]; MAX_NODES]>,
     elem_mass: Vec<Block>,
     stats: Stats,
@@ -550,6 +557,9 @@ impl LoadAssembly {
             flow: vec![NodeFlow::default(); n_nodes],
             wake: vec![WakeCell::default(); ne],
             wake_ready: false,
+            cage_wake: CageWake::default(),
+            cage_receivers: Vec::new(),
+            cage_factor: vec![1.0; ne],
             elem_force: vec![[[0.0; 3]; MAX_NODES]; ne],
             elem_mass: vec![[[0.0; 3]; 3]; ne],
             stats: Stats::new(),
@@ -630,10 +640,22 @@ impl LoadAssembly {
         }
     }
 
-    /// Wake state per element (index as elements; lines and points outside any shadow have
-    /// r = 1), for the `in_shadow` / `wake_factor` cell data.
+    /// Net-to-net wake state per element within its own cage (index as elements; lines and
+    /// points outside any shadow have r = 1), for the `in_shadow` cell data.
     pub fn wake(&self) -> &[WakeCell] {
         &self.wake
+    }
+
+    /// The cage-to-cage ratio of element `e` (1 unless an upstream cage shadows it;
+    /// docs/theory/hydrodynamics.md#cage-to-cage-wake).
+    pub fn cage_wake_factor(&self, e: usize) -> f64 {
+        self.cage_factor[e]
+    }
+
+    /// The factor multiplying the current on element `e`: its own cage's wake factor times
+    /// the cage-to-cage ratio (the `wake_factor` cell data).
+    pub fn wake_factor(&self, e: usize) -> f64 {
+        self.wake[e].factor * self.cage_factor[e]
     }
 
     /// Net area and twine volumes at positions `x` (log at start-up,
@@ -756,7 +778,7 @@ impl LoadAssembly {
         local: &mut Local,
     ) {
         let el = &self.elems[e];
-        let r = self.wake[e].factor;
+        let r = self.wake[e].factor * self.cage_factor[e];
         let fl = |i: usize| &self.flow[el.nodes[i]];
         match el.kind {
             Kind::Tri | Kind::Quad => {

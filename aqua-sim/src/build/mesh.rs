@@ -1,11 +1,11 @@
-//! The merged mesh of a scene: every `[[cage]]`, `[[panel]]`, `[[mesh]]`, free `[[buoy]]`
-//! (one with a `position`) and `[[line]]`, with unique object names; a line whose fairlead
-//! names a node of another object is welded to it.
+//! The merged mesh of a scene: every `[[cage]]`, `[[panel]]`, `[[mesh]]`, `[[farm]]`, free
+//! `[[buoy]]` (one with a `position`) and `[[line]]`, with unique object names; a line whose
+//! fairlead names a node of another object is welded to it.
 
 use crate::error::{Result, SimError};
 use crate::scene::{NetHydro, Scene};
 use aqua_hydro::WakeModelId;
-use aqua_mesh::{Fairlead, Mesh, PanelNodes};
+use aqua_mesh::{Fairlead, FarmBuoy, FarmCounts, Mesh, PanelNodes};
 use std::collections::{BTreeMap, HashMap};
 
 fn input(msg: impl Into<String>) -> SimError {
@@ -122,9 +122,41 @@ impl Merge {
     }
 }
 
-/// Builds the merged mesh of a scene: cages, panels, gmsh meshes, free buoys, then lines
-/// (whose fairlead may name a node of the others).
+/// What a `[[farm]]` added to the mesh besides its objects.
+#[derive(Debug, Clone)]
+pub struct BuiltFarm {
+    /// Farm name (the prefix of its objects).
+    pub name: String,
+    /// Line of its table in the scene file.
+    pub line: usize,
+    /// Its buoys (point bodies on mesh nodes).
+    pub buoys: Vec<FarmBuoy>,
+    /// Object names of its cages.
+    pub cages: Vec<String>,
+    /// Object names of its anchor lines.
+    pub anchors: Vec<String>,
+    /// Cage-to-cage wake among its cages.
+    pub cage_wake: bool,
+    /// Counts per part.
+    pub counts: FarmCounts,
+}
+
+/// The merged mesh, the net keys per object and the farms.
+#[derive(Debug)]
+pub(crate) struct MeshParts {
+    pub mesh: Mesh,
+    pub nets: HashMap<String, NetHydro>,
+    pub farms: Vec<BuiltFarm>,
+}
+
+/// Builds the merged mesh of a scene: cages, panels, gmsh meshes, farms, free buoys, then
+/// lines (whose fairlead may name a node of the others).
 pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
+    build_mesh_parts(scene).map(|p| (p.mesh, p.nets))
+}
+
+/// [`build_mesh`] with the farms' buoys and counts.
+pub(crate) fn build_mesh_parts(scene: &Scene) -> Result<MeshParts> {
     let file = scene.path.display().to_string();
     let mut m = Merge {
         file: file.clone(),
@@ -163,6 +195,10 @@ pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
         m.append("mesh", i, c.line, aqua_mesh::import_gmsh(&p))?;
         m.nets.insert(name, c.value.net_hydro.clone());
     }
+    let mut farms = Vec::new();
+    for (i, c) in scene.farm.iter().enumerate() {
+        farms.push(add_farm(scene, &mut m, i, c)?);
+    }
     // Free buoys before lines, so that a line's fairlead can name one ("b1/buoy").
     for (i, b) in scene.buoy.iter().enumerate() {
         if let Some(p) = b.value.position {
@@ -175,10 +211,76 @@ pub fn build_mesh(scene: &Scene) -> Result<(Mesh, HashMap<String, NetHydro>)> {
     }
     if m.mesh.nodes.is_empty() {
         return Err(input(format!(
-            "{file}: the scene has no structure: add a [[cage]], [[panel]], [[line]] or [[mesh]]"
+            "{file}: the scene has no structure: add a [[cage]], [[panel]], [[line]], [[mesh]] \
+             or [[farm]]"
         )));
     }
-    Ok((m.mesh, m.nets))
+    Ok(MeshParts {
+        mesh: m.mesh,
+        nets: m.nets,
+        farms,
+    })
+}
+
+/// The seabed level z = −depth of a finite sea [m].
+fn seabed_z(scene: &Scene) -> Option<f64> {
+    scene.sea.depth.as_ref().and_then(|_| {
+        scene
+            .sea
+            .constants()
+            .ok()
+            .and_then(|c| c.depth.finite())
+            .map(|h| -h)
+    })
+}
+
+/// Appends a `[[farm]]`: its cages, frame and anchor lines, each a uniquely named object.
+fn add_farm(
+    scene: &Scene,
+    m: &mut Merge,
+    i: usize,
+    c: &crate::scene::Located<crate::scene::FarmSpec>,
+) -> Result<BuiltFarm> {
+    let mut p = c.value.params.clone();
+    let name = m.name(&p.name, "farm", i, c.line)?;
+    if name.contains('/') || name.is_empty() {
+        return Err(input(format!(
+            "{}: line {}: [[farm]] #{}: name = \"{name}\": a non-empty name without '/' (it \
+             prefixes the farm's objects: \"{name}/cage_r1c1\")",
+            m.file,
+            c.line,
+            i + 1
+        )));
+    }
+    p.name = Some(name.clone());
+    let at = format!("{}: line {}: [[farm]] #{}", m.file, c.line, i + 1);
+    let farm = p
+        .build(&c.value.cage.params, seabed_z(scene))
+        .map_err(|e| SimError::at(at.clone(), e))?;
+    for o in &farm.mesh.objects {
+        m.name(&Some(o.name.clone()), "farm", i, c.line)?;
+    }
+    for cage in &farm.cages {
+        m.nets.insert(cage.clone(), c.value.cage.net_hydro.clone());
+    }
+    let counts = farm.counts(&name);
+    let buoys = farm.buoys.clone();
+    let node_off = m.mesh.append(farm.mesh);
+    Ok(BuiltFarm {
+        name,
+        line: c.line,
+        buoys: buoys
+            .into_iter()
+            .map(|b| FarmBuoy {
+                node: b.node + node_off,
+                ..b
+            })
+            .collect(),
+        cages: farm.cages,
+        anchors: farm.anchors,
+        cage_wake: p.cage_wake.unwrap_or(true),
+        counts,
+    })
 }
 
 /// Appends a `[[line]]`; a fairlead that names a node is welded to it.
@@ -189,14 +291,7 @@ fn add_line(
     c: &crate::scene::Located<crate::scene::LineSpec>,
 ) -> Result<()> {
     let file = m.file.clone();
-    let seabed_z = scene.sea.depth.as_ref().and_then(|_| {
-        scene
-            .sea
-            .constants()
-            .ok()
-            .and_then(|c| c.depth.finite())
-            .map(|h| -h)
-    });
+    let seabed_z = seabed_z(scene);
     let mut p = c.value.params.clone();
     p.name = Some(m.name(&p.name, "line", i, c.line)?);
     let mut weld_to = None;

@@ -11,7 +11,7 @@ mod mesh;
 mod structure;
 mod water;
 
-pub use mesh::{build_mesh, resolve_ref};
+pub use mesh::{BuiltFarm, build_mesh, resolve_ref};
 pub use structure::Prescribed;
 pub use water::{LoadCell, default_wake};
 
@@ -21,7 +21,8 @@ use crate::error::{Result, SimError};
 use crate::scene::{AnalysisKind, Scene};
 use aqua_env::{BuildOptions, Sea, SeaSummary};
 use aqua_fem::{ExternalMotion, Model};
-use aqua_hydro::assembly::Elements;
+use aqua_hydro::assembly::{Elements, PointElement};
+use aqua_hydro::{CageWake, PointProps};
 use aqua_mesh::{Mesh, ObjectKind};
 use std::sync::Arc;
 
@@ -52,6 +53,11 @@ pub struct Built {
     pub nets: Vec<NetCells>,
     /// Per `[[line]]`: name, anchor node, fairlead node, first and last element.
     pub line_ends: Vec<LineEnds>,
+    /// The farms: buoys, cages, anchor lines and counts per part.
+    pub farms: Vec<BuiltFarm>,
+    /// The cage-to-cage wake (docs/theory/hydrodynamics.md#cage-to-cage-wake): the cages of
+    /// farms with `cage_wake` and, with `[wake] cage_to_cage`, every `[[cage]]` copy.
+    pub cage_wake: CageWake,
     /// Externally driven nodes (built with [`Prescribed::External`]): the `[[prescribed]]`
     /// node reference, its nodes and their motions.
     pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
@@ -102,12 +108,21 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         .sea
         .build(&BuildOptions::default())
         .map_err(|e| SimError::at(file.clone(), e))?;
-    let (mesh, nets) = build_mesh(scene)?;
+    let mesh::MeshParts { mesh, nets, farms } = mesh::build_mesh_parts(scene)?;
     let (sea, sea_summary) = build_sea(scene, &mesh)?;
     let env = structure::environment(scene, sea.constants());
-    let st = structure::build_structure(scene, &mesh, env, prescribed)?;
+    let mut st = structure::build_structure(scene, &mesh, env, prescribed)?;
+    add_buoys(&file, &farms, &mut st)?;
     let model = st.builder.build().map_err(|e| SimError::at(file, e))?;
-    let loads = water::build_water_loads(scene, &mesh, &nets, &st.sections, st.hydro_points)?;
+    let wake_cages = cage_wake_objects(scene, &mesh, &farms);
+    let loads = water::build_water_loads(
+        scene,
+        &mesh,
+        &nets,
+        &st.sections,
+        st.hydro_points,
+        &wake_cages,
+    )?;
     // A gmsh line group's "uses the rope default section" notice is moot once a `[[group]]`
     // sets its section.
     let notices: Vec<String> = mesh
@@ -161,10 +176,70 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         supported_nodes: st.supported.into_iter().collect(),
         nets: loads.nets,
         line_ends,
+        farms,
+        cage_wake: loads.cage_wake,
         external: st.external,
         diagnostics,
         design,
     })
+}
+
+/// The farms' buoys as point bodies: mass to the structure, volume and drag to the water
+/// loads (as a `[[point]]` on the buoy node).
+fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> Result<()> {
+    for f in farms {
+        for b in &f.buoys {
+            if b.mass > 0.0 {
+                st.builder
+                    .add_point_body(aqua_fem::PointBody {
+                        node: b.node,
+                        mass: b.mass,
+                        force: [0.0; 3],
+                        seabed_stiffness: 0.0,
+                    })
+                    .map_err(|e| {
+                        SimError::at(
+                            format!("{file}: line {}: [[farm]] {} buoy", f.line, f.name),
+                            e,
+                        )
+                    })?;
+            }
+            st.hydro_points.push(PointElement {
+                node: b.node,
+                props: PointProps {
+                    volume: b.volume,
+                    shape: aqua_hydro::point::PointShape::Prism { height: b.height },
+                    drag_area: b.drag_area,
+                    added_mass: b.added_mass_coefficient,
+                },
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The cage objects that take part in the cage-to-cage wake.
+fn cage_wake_objects(
+    scene: &Scene,
+    mesh: &Mesh,
+    farms: &[BuiltFarm],
+) -> std::collections::HashSet<String> {
+    let mut set: std::collections::HashSet<String> = farms
+        .iter()
+        .filter(|f| f.cage_wake)
+        .flat_map(|f| f.cages.iter().cloned())
+        .collect();
+    if scene.wake.cage_to_cage {
+        let in_farm: std::collections::HashSet<&String> =
+            farms.iter().flat_map(|f| &f.cages).collect();
+        set.extend(
+            mesh.objects
+                .iter()
+                .filter(|o| matches!(o.kind, ObjectKind::Cage(_)) && !in_farm.contains(&o.name))
+                .map(|o| o.name.clone()),
+        );
+    }
+    set
 }
 
 /// The sea of a scene, its irregular band weighted at the shallowest node

@@ -16,11 +16,11 @@ use aqua_hydro::assembly::{
     LineElement as HydroLine, NetPanel, PanelNodes as HydroPanelNodes, PointElement, WakeGroup,
 };
 use aqua_hydro::{
-    LineProps, MorisonModel, MorisonModelId, NetProps, ScreenModel, WakeModelId, WakeSpec,
-    WakeUpdate,
+    CageWake, LineProps, MorisonModel, MorisonModelId, NetProps, ScreenModel, WakeModelId,
+    WakeSpec, WakeUpdate,
 };
 use aqua_mesh::{Mesh, NetGrouping, ObjectKind, PanelNodes, Role, Section};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// The load elements with what the outputs need to map them back to mesh cells.
 #[derive(Debug)]
@@ -35,6 +35,8 @@ pub(super) struct WaterLoadElements {
     pub nets: Vec<NetCells>,
     /// Per panel and line load element, in the assembly's order: its mesh cell.
     pub load_cells: Vec<LoadCell>,
+    /// The cage-to-cage wake among the wake groups of the participating cages.
+    pub cage_wake: CageWake,
 }
 
 /// The mesh cell of a panel or line load element.
@@ -70,8 +72,17 @@ pub(super) fn build_water_loads(
     nets: &HashMap<String, NetHydro>,
     sections: &[Option<(GroupId, Section)>],
     points: Vec<PointElement>,
+    wake_cages: &HashSet<String>,
 ) -> Result<WaterLoadElements> {
     let (wake_groups, wake_index, mut nets_out) = wake_groups(scene, mesh, nets)?;
+    // Every copy of a participating cage (docs/theory/hydrodynamics.md#cage-to-cage-wake).
+    let mut members: Vec<usize> = wake_index
+        .iter()
+        .filter(|((o, _), _)| wake_cages.contains(&mesh.objects[*o as usize].name))
+        .map(|(_, &g)| g)
+        .collect();
+    members.sort_unstable();
+    let cage_wake = CageWake::among(&wake_groups, &members);
     let (panels, panel_loaded) = screen_panels(scene, mesh, nets, &wake_index, &mut nets_out)?;
     let (lines, is_twine) = morison_lines(scene, mesh, nets, sections, &wake_index)?;
     // The assembly numbers panels first, then lines (aqua-hydro `LoadAssembly`).
@@ -98,6 +109,7 @@ pub(super) fn build_water_loads(
         is_twine,
         panel_loaded,
         nets: nets_out,
+        cage_wake,
     })
 }
 

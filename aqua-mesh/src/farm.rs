@@ -1,0 +1,920 @@
+//! Farm builder (`[[farm]]`, docs/theory/cages.md#farm-grid): rows × columns of cages on a
+//! square mooring grid.
+//!
+//! Layout (x east, y north, z up; the grid centred on `origin`):
+//!
+//! * **plates** at the grid intersections, (rows + 1) × (columns + 1) of them at
+//!   z = −`grid_depth`; plate (i, j), i = 0..=columns along x and j = 0..=rows along y, is node
+//!   `plates[j·(columns + 1) + i]` of the frame;
+//! * **cages**: slot (r, c), r = 1..=rows along y and c = 1..=columns along x, is the cell
+//!   between plates (c − 1, r − 1) and (c, r); its cage (one `cage` table for every slot,
+//!   `fixed = []`: the collar floats) is the object `<farm>/cage_r<r>c<c>` with its origin at
+//!   the cell centre, z = 0;
+//! * the **frame** object `<farm>/frame`: `frame_lines` along the grid lines between
+//!   neighbouring plates, `bridles` from the four corner plates of each cell to the collar
+//!   (`top_ring`) node of its cage nearest to that corner, `pendants` from every plate straight
+//!   up to a surface **buoy** node (node groups `plates` and `buoys`);
+//! * **anchor lines** `<farm>/anchor_<e|w|n|s><k>` from every outer plate outwards along the
+//!   grid axes (one per edge plate, two at a corner): `e` runs along +x from the plates
+//!   i = columns, `w` along −x from i = 0, `n` along +y from j = rows, `s` along −y from j = 0;
+//!   k counts from 1 along the edge with increasing y (e, w) or x (n, s). The line is a chain
+//!   (optional, at the anchor) then a rope to the plate; the anchor is fixed on the seabed.
+//!
+//! The buoys are returned as [`FarmBuoy`] point bodies for the caller to load, and each part
+//! is made by a small function ([`anchor_line`], the buoy list) so that the buoy and
+//! segmented-line builders can replace them.
+
+use crate::Mesh;
+use crate::cage::CageParams;
+use crate::error::{MeshError, Result};
+use crate::line::catenary_nodes;
+use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
+use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// `[farm.buoy]`: the buoy on every plate (a point body at the top of the plate's pendant).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BuoyParams {
+    /// Displaced volume V [m³] when fully submerged, > 0.
+    pub volume: f64,
+    /// Mass [kg], default 0.
+    #[serde(default)]
+    pub mass: f64,
+    /// Vertical extent for partial submergence [m] (default V^(1/3)).
+    pub height: Option<f64>,
+    /// C_D·A [m²] for isotropic quadratic drag, default 0.
+    #[serde(default)]
+    pub drag_area: f64,
+    /// Added-mass coefficient C_a (added mass C_a·ρ·V), default 0.
+    #[serde(default)]
+    pub added_mass_coefficient: f64,
+}
+
+/// One `[[farm]]` table but its `cage` table (which the caller types with its net keys).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FarmParams {
+    /// `name` (default `farm<index>`, set by the caller; `farm0` here).
+    pub name: Option<String>,
+    /// Cage rows (along y), ≥ 1.
+    pub rows: u32,
+    /// Cage columns (along x), ≥ 1.
+    pub columns: u32,
+    /// Grid spacing [m] (cell side), > 0.
+    pub spacing: f64,
+    /// Depth of the frame (plates) below the still water level [m], > 0.
+    pub grid_depth: f64,
+    /// Horizontal centre of the grid [x, y] [m], default [0, 0].
+    pub origin: Option<[f64; 2]>,
+    /// Element length of frame lines, bridles, pendants and anchor lines [m], default 5.
+    pub element_length: Option<f64>,
+    /// Unstretched length of each anchor line (chain + rope) [m], > 0.
+    pub anchor_length: f64,
+    /// Horizontal distance from the plate to its anchor [m] (default: the line's horizontal
+    /// span when its chord is 97 % of `anchor_length`).
+    pub anchor_distance: Option<f64>,
+    /// Length of the chain part of each anchor line at the anchor [m] (default 0: rope only;
+    /// needs `[farm.chain]`).
+    pub chain_length: Option<f64>,
+    /// The cage-to-cage wake among the farm's cages (default true).
+    pub cage_wake: Option<bool>,
+    /// `[farm.frame]`: section of the frame lines and pendants (diameter, ea or
+    /// youngs_modulus, mass_per_length or density required).
+    pub frame: Option<SectionOverride>,
+    /// `[farm.bridle]`: section of the bridles.
+    pub bridle: Option<SectionOverride>,
+    /// `[farm.anchor]`: section of the anchor lines' rope part.
+    pub anchor: Option<SectionOverride>,
+    /// `[farm.chain]`: section of the anchor lines' chain part.
+    pub chain: Option<SectionOverride>,
+    /// `[farm.buoy]`: the buoy on every plate.
+    pub buoy: Option<BuoyParams>,
+}
+
+/// A buoy of the farm: its node and properties.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FarmBuoy {
+    /// Mesh node (top of a pendant).
+    pub node: usize,
+    /// Volume [m³].
+    pub volume: f64,
+    /// Mass [kg].
+    pub mass: f64,
+    /// Vertical extent [m].
+    pub height: f64,
+    /// C_D·A [m²].
+    pub drag_area: f64,
+    /// Added-mass coefficient.
+    pub added_mass_coefficient: f64,
+}
+
+/// What a farm builds: the mesh (cages, frame, anchor lines as objects) and its buoys.
+#[derive(Debug, Clone)]
+pub struct FarmMesh {
+    /// All objects of the farm.
+    pub mesh: Mesh,
+    /// Buoys (node ids of `mesh`).
+    pub buoys: Vec<FarmBuoy>,
+    /// Object names of the cages, slot order (r, then c).
+    pub cages: Vec<String>,
+    /// Object names of the anchor lines.
+    pub anchors: Vec<String>,
+}
+
+/// Counts of a built farm (for `aqua check`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FarmCounts {
+    /// Cages.
+    pub cages: usize,
+    /// Plates.
+    pub plates: usize,
+    /// Buoys.
+    pub buoys: usize,
+    /// Anchor lines.
+    pub anchor_lines: usize,
+    /// Frame line elements.
+    pub frame_elements: usize,
+    /// Bridles (lines, not elements).
+    pub bridles: usize,
+}
+
+const DEFAULT_ELEMENT_LENGTH: f64 = 5.0;
+/// Default anchor chord as a fraction of the anchor line length.
+const ANCHOR_CHORD_FRACTION: f64 = 0.97;
+
+impl FarmParams {
+    fn name(&self) -> String {
+        self.name.clone().unwrap_or_else(|| "farm0".into())
+    }
+
+    /// The grid checks: counts, lengths and the section tables that must be there.
+    fn check(&self) -> Result<()> {
+        let obj = self.name();
+        let obj = obj.as_str();
+        for (key, v) in [("rows", self.rows), ("columns", self.columns)] {
+            if v < 1 {
+                return Err(MeshError::param(
+                    obj,
+                    key,
+                    v,
+                    "must be >= 1 (a farm has at least one cage)",
+                ));
+            }
+        }
+        if self.rows as usize * self.columns as usize > 400 {
+            return Err(MeshError::param(
+                obj,
+                "rows",
+                self.rows,
+                "rows × columns must be <= 400 cages",
+            ));
+        }
+        for (key, v) in [
+            ("spacing", self.spacing),
+            ("grid_depth", self.grid_depth),
+            ("anchor_length", self.anchor_length),
+        ] {
+            positive(obj, key, v)?;
+        }
+        if let Some(e) = self.element_length {
+            positive(obj, "element_length", e)?;
+        }
+        if let Some(o) = self.origin
+            && !o.iter().all(|c| c.is_finite())
+        {
+            return Err(MeshError::param(
+                obj,
+                "origin",
+                format!("{o:?}"),
+                "must be finite [x, y] in m",
+            ));
+        }
+        if let Some(c) = self.chain_length {
+            if !(c.is_finite() && c >= 0.0 && c < self.anchor_length) {
+                return Err(MeshError::param(
+                    obj,
+                    "chain_length",
+                    c,
+                    format!(
+                        "must be >= 0 and < anchor_length = {} m (the rope takes the rest)",
+                        self.anchor_length
+                    ),
+                ));
+            }
+            if c > 0.0 && self.chain.is_none() {
+                return Err(missing_table(obj, "chain", "chain_length > 0"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Builds the farm with `cage` in every slot; `seabed_z` [m] is the seabed level (−depth),
+    /// required for the anchors.
+    pub fn build(&self, cage: &CageParams, seabed_z: Option<f64>) -> Result<FarmMesh> {
+        self.check()?;
+        let name = self.name();
+        let obj = name.as_str();
+        let zb = seabed_z.ok_or_else(|| {
+            MeshError::param(
+                obj,
+                "anchor_length",
+                self.anchor_length,
+                "a farm needs a finite sea depth ([sea] depth) for its anchors",
+            )
+        })?;
+        if -self.grid_depth <= zb {
+            return Err(MeshError::param(
+                obj,
+                "grid_depth",
+                self.grid_depth,
+                format!("must be less than the water depth {} m", -zb),
+            ));
+        }
+        for key in ["origins", "fixed", "name"] {
+            let set = match key {
+                "origins" => cage.origins.is_some(),
+                "fixed" => cage.fixed.as_ref().is_some_and(|f| !f.is_empty()),
+                _ => cage.name.is_some(),
+            };
+            if set {
+                return Err(MeshError::param(
+                    obj,
+                    &format!("cage.{key}"),
+                    "(set)",
+                    "is set by the farm (slot names and positions; collars float, so fixed = [])",
+                ));
+            }
+        }
+        let frame = line_section(obj, "frame", self.frame.as_ref(), "rope")?;
+        let bridle = line_section(obj, "bridle", self.bridle.as_ref(), "rope")?;
+        let rope = line_section(obj, "anchor", self.anchor.as_ref(), "rope")?;
+        let chain_len = self.chain_length.unwrap_or(0.0);
+        let chain = match (&self.chain, chain_len > 0.0) {
+            (Some(c), true) => Some(line_section(obj, "chain", Some(c), "chain")?),
+            (Some(_), false) => {
+                return Err(MeshError::param(
+                    obj,
+                    "chain",
+                    "(set)",
+                    "needs chain_length > 0 (the length of chain at the anchor)",
+                ));
+            }
+            _ => None,
+        };
+        let buoy = self
+            .buoy
+            .as_ref()
+            .ok_or_else(|| missing_table(obj, "buoy", "every farm (one buoy per plate)"))?;
+        let buoy = check_buoy(obj, buoy)?;
+        let el = self.element_length.unwrap_or(DEFAULT_ELEMENT_LENGTH);
+
+        let grid = Grid::new(self);
+        let mut mesh = Mesh::default();
+        let mut cages = Vec::new();
+        let mut collars = Vec::new();
+        for r in 1..=self.rows as usize {
+            for c in 1..=self.columns as usize {
+                let cname = format!("{name}/cage_r{r}c{c}");
+                let centre = grid.cell_centre(c, r);
+                let mut p = cage.clone();
+                p.name = Some(cname.clone());
+                p.origins = Some(vec![[centre.x, centre.y, 0.0]]);
+                p.fixed = Some(Vec::new());
+                mesh.append(p.build()?);
+                let oi = mesh.objects.len() as u32 - 1;
+                let ring = mesh
+                    .group(oi, "top_ring")
+                    .map(|g| g.nodes.clone())
+                    .unwrap_or_default();
+                collars.push(((c, r), centre, ring));
+                cages.push(cname);
+            }
+        }
+        let (frame_mesh, buoys_local, welds) = frame_object(
+            &format!("{name}/frame"),
+            &grid,
+            &frame,
+            &bridle,
+            el,
+            &mesh,
+            &collars,
+        )?;
+        let off = mesh.append(frame_mesh);
+        weld_tail(&mut mesh, &welds);
+        let buoys = buoys_local
+            .into_iter()
+            .map(|n| FarmBuoy {
+                node: n + off,
+                ..buoy
+            })
+            .collect();
+        let plate_node = |i: usize, j: usize| off + grid.plate(i, j);
+        let mut anchors = Vec::new();
+        let span = -self.grid_depth - zb;
+        let distance = match self.anchor_distance {
+            Some(d) => positive(obj, "anchor_distance", d)?,
+            None => {
+                let chord = ANCHOR_CHORD_FRACTION * self.anchor_length;
+                if chord <= span {
+                    return Err(MeshError::param(
+                        obj,
+                        "anchor_length",
+                        self.anchor_length,
+                        format!(
+                            "must exceed the height of the grid above the seabed, {span} m, by \
+                             more than 3 % (or give anchor_distance)"
+                        ),
+                    ));
+                }
+                (chord * chord - span * span).sqrt()
+            }
+        };
+        let mut parts = Vec::new();
+        if let Some(ch) = &chain {
+            parts.push(("chain", ch.clone(), chain_len));
+        }
+        parts.push(("rope", rope, self.anchor_length - chain_len));
+        for (tag, i, j, dir) in grid.outer_plates() {
+            let k = if matches!(tag, 'e' | 'w') {
+                j + 1
+            } else {
+                i + 1
+            };
+            let aname = format!("{name}/anchor_{tag}{k}");
+            let plate = grid.plate_position(i, j);
+            let a = plate + dir * distance;
+            let line = anchor_line(&aname, Point3::new(a.x, a.y, zb), plate, &parts, el, zb)?;
+            mesh.append(line);
+            weld_tail(&mut mesh, &[plate_node(i, j)]);
+            anchors.push(aname);
+        }
+        Ok(FarmMesh {
+            mesh,
+            buoys,
+            cages,
+            anchors,
+        })
+    }
+}
+
+impl FarmMesh {
+    /// Counts per part.
+    pub fn counts(&self, farm: &str) -> FarmCounts {
+        let frame = self
+            .mesh
+            .objects
+            .iter()
+            .position(|o| o.name == format!("{farm}/frame"))
+            .map(|o| o as u32);
+        let group = |g: &str| frame.and_then(|o| self.mesh.group(o, g));
+        FarmCounts {
+            cages: self.cages.len(),
+            plates: group("plates").map_or(0, |g| g.nodes.len()),
+            buoys: self.buoys.len(),
+            anchor_lines: self.anchors.len(),
+            frame_elements: group("frame_lines").map_or(0, |g| g.lines.len()),
+            bridles: 4 * self.cages.len(),
+        }
+    }
+}
+
+fn positive(obj: &str, key: &str, v: f64) -> Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(MeshError::param(obj, key, v, "must be a finite number > 0"))
+    }
+}
+
+fn missing_table(obj: &str, key: &str, who: &str) -> MeshError {
+    MeshError::param(
+        obj,
+        key,
+        "(missing)",
+        format!(
+            "[farm.{key}] is required for {who}: a section table with diameter, ea or \
+             youngs_modulus, mass_per_length or density"
+        ),
+    )
+}
+
+/// The section of a farm line part from its table: diameter, EA (or E) and mass (or density)
+/// are required, as for `[[line]]`.
+fn line_section(
+    obj: &str,
+    key: &str,
+    table: Option<&SectionOverride>,
+    material: &str,
+) -> Result<Section> {
+    let t = table.ok_or_else(|| missing_table(obj, key, "every farm"))?;
+    let need = |k: &str, ok: bool, what: &str| {
+        if ok {
+            Ok(())
+        } else {
+            Err(MeshError::param(
+                obj,
+                &format!("{key}.{k}"),
+                "(missing)",
+                what.to_string(),
+            ))
+        }
+    };
+    need(
+        "diameter",
+        t.diameter.is_some(),
+        "required: the nominal diameter [m]",
+    )?;
+    need(
+        "ea",
+        t.ea.is_some() || t.youngs_modulus.is_some(),
+        "give `ea` [N] or `youngs_modulus` [Pa]",
+    )?;
+    need(
+        "mass_per_length",
+        t.mass_per_length.is_some() || t.density.is_some(),
+        "give `mass_per_length` [kg/m] or `density` [kg/m³]",
+    )?;
+    let mut s = Section::cable(material, 1.0, 0.0, 0.0);
+    t.apply(obj, key, &mut s)?;
+    Ok(s)
+}
+
+fn check_buoy(obj: &str, b: &BuoyParams) -> Result<FarmBuoy> {
+    let volume = positive(obj, "buoy.volume", b.volume)?;
+    let height = match b.height {
+        Some(h) => positive(obj, "buoy.height", h)?,
+        None => volume.cbrt(),
+    };
+    for (k, v) in [
+        ("buoy.mass", b.mass),
+        ("buoy.drag_area", b.drag_area),
+        ("buoy.added_mass_coefficient", b.added_mass_coefficient),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(MeshError::param(obj, k, v, "must be a finite number >= 0"));
+        }
+    }
+    Ok(FarmBuoy {
+        node: 0,
+        volume,
+        mass: b.mass,
+        height,
+        drag_area: b.drag_area,
+        added_mass_coefficient: b.added_mass_coefficient,
+    })
+}
+
+/// The grid's geometry.
+struct Grid {
+    columns: usize,
+    rows: usize,
+    spacing: f64,
+    depth: f64,
+    origin: [f64; 2],
+}
+
+impl Grid {
+    fn new(p: &FarmParams) -> Self {
+        Self {
+            columns: p.columns as usize,
+            rows: p.rows as usize,
+            spacing: p.spacing,
+            depth: p.grid_depth,
+            origin: p.origin.unwrap_or([0.0, 0.0]),
+        }
+    }
+
+    /// Plate index of intersection (i, j).
+    fn plate(&self, i: usize, j: usize) -> usize {
+        j * (self.columns + 1) + i
+    }
+
+    fn plate_position(&self, i: usize, j: usize) -> Point3<f64> {
+        let x = self.origin[0] + (i as f64 - self.columns as f64 / 2.0) * self.spacing;
+        let y = self.origin[1] + (j as f64 - self.rows as f64 / 2.0) * self.spacing;
+        Point3::new(x, y, -self.depth)
+    }
+
+    /// Centre of slot (c, r), 1-based, at z = 0.
+    fn cell_centre(&self, c: usize, r: usize) -> Point3<f64> {
+        let a = self.plate_position(c - 1, r - 1);
+        Point3::new(a.x + self.spacing / 2.0, a.y + self.spacing / 2.0, 0.0)
+    }
+
+    /// Outer plates with their outward directions: (tag, i, j, direction).
+    fn outer_plates(&self) -> Vec<(char, usize, usize, Vector3<f64>)> {
+        let (nc, nr) = (self.columns, self.rows);
+        let mut v = Vec::new();
+        for j in 0..=nr {
+            v.push(('e', nc, j, Vector3::x()));
+        }
+        for i in 0..=nc {
+            v.push(('n', i, nr, Vector3::y()));
+        }
+        for j in 0..=nr {
+            v.push(('w', 0, j, -Vector3::x()));
+        }
+        for i in 0..=nc {
+            v.push(('s', i, 0, -Vector3::y()));
+        }
+        v
+    }
+}
+
+fn segments(length: f64, el: f64) -> usize {
+    (length / el).round().max(1.0) as usize
+}
+
+/// A straight line of elements of about `el` from node `from` to node `to` of group `g`.
+fn straight(b: &mut MeshBuilder, g: usize, from: usize, to: usize, el: f64) {
+    let (a, end) = (b.mesh.nodes[from], b.mesh.nodes[to]);
+    let n = segments((end - a).norm(), el);
+    let mut prev = from;
+    for k in 1..n {
+        let node = b.add_node(a + (end - a) * (k as f64 / n as f64));
+        b.add_line(g, prev, node, None);
+        prev = node;
+    }
+    b.add_line(g, prev, to, None);
+}
+
+/// The collar node of `ring` that points most towards `dir` from `centre`; exact ties (a
+/// corner between two nodes) go to the node farther from the centre line y = centre.y, then
+/// x = centre.x, so that mirror-symmetric farms get mirror-symmetric bridles.
+fn collar_node(
+    mesh: &Mesh,
+    ring: &[usize],
+    centre: Point3<f64>,
+    dir: Vector3<f64>,
+) -> Option<usize> {
+    let key = |n: usize| {
+        let d = mesh.nodes[n] - centre;
+        (d.dot(&dir), d.y.abs(), d.x.abs())
+    };
+    let best = ring
+        .iter()
+        .map(|&n| key(n).0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let tol = 1e-9 * best.abs().max(1.0);
+    ring.iter()
+        .copied()
+        .filter(|&n| key(n).0 >= best - tol)
+        .max_by(|&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            ka.1.total_cmp(&kb.1).then(ka.2.total_cmp(&kb.2))
+        })
+}
+
+/// The frame object: plates, buoy nodes, frame lines, pendants and bridles. The bridles'
+/// collar ends are extra nodes at the end of the returned mesh; `welds` lists, in order, the
+/// existing node of `mesh` each of them becomes (for [`weld_tail`] after appending).
+#[allow(clippy::type_complexity)]
+fn frame_object(
+    name: &str,
+    grid: &Grid,
+    frame: &Section,
+    bridle: &Section,
+    el: f64,
+    mesh: &Mesh,
+    collars: &[((usize, usize), Point3<f64>, Vec<usize>)],
+) -> Result<(Mesh, Vec<usize>, Vec<usize>)> {
+    let mut b = MeshBuilder::default();
+    let (nc, nr) = (grid.columns, grid.rows);
+    for j in 0..=nr {
+        for i in 0..=nc {
+            b.add_node(grid.plate_position(i, j));
+        }
+    }
+    let n_plates = (nc + 1) * (nr + 1);
+    let buoys: Vec<usize> = (0..n_plates)
+        .map(|p| {
+            let q = b.mesh.nodes[p];
+            b.add_node(Point3::new(q.x, q.y, 0.0))
+        })
+        .collect();
+    let g_frame = b.group("frame_lines", Role::MooringLine, Some(frame.clone()));
+    for j in 0..=nr {
+        for i in 0..=nc {
+            let p = grid.plate(i, j);
+            if i < nc {
+                let q = grid.plate(i + 1, j);
+                straight(&mut b, g_frame, p, q, el);
+            }
+            if j < nr {
+                let q = grid.plate(i, j + 1);
+                straight(&mut b, g_frame, p, q, el);
+            }
+        }
+    }
+    let g_pend = b.group("pendants", Role::MooringLine, Some(frame.clone()));
+    for (p, &top) in buoys.iter().enumerate() {
+        straight(&mut b, g_pend, p, top, el);
+    }
+    let g_bridle = b.group("bridles", Role::MooringLine, Some(bridle.clone()));
+    let mut welds = Vec::new();
+    let mut ends = Vec::new();
+    for ((c, r), centre, ring) in collars {
+        for (di, dj) in [(0, 0), (1, 0), (1, 1), (0, 1)] {
+            let (i, j) = (c - 1 + di, r - 1 + dj);
+            let plate = grid.plate_position(i, j);
+            let dir = Vector3::new(plate.x - centre.x, plate.y - centre.y, 0.0);
+            let target = collar_node(mesh, ring, *centre, dir).ok_or_else(|| {
+                MeshError::inconsistent(name, "a farm cage has no top_ring to hang bridles on")
+            })?;
+            ends.push((grid.plate(i, j), target));
+        }
+    }
+    // Bridle collar ends become the last nodes, in order.
+    let mut pending = Vec::new();
+    for (p, target) in ends {
+        let a = b.mesh.nodes[p];
+        let end = mesh.nodes[target];
+        let n = segments((end - a).norm(), el);
+        let mut prev = p;
+        for k in 1..n {
+            let node = b.add_node(a + (end - a) * (k as f64 / n as f64));
+            b.add_line(g_bridle, prev, node, None);
+            prev = node;
+        }
+        pending.push((prev, end, target));
+    }
+    for (prev, end, target) in pending {
+        let node = b.add_node(end);
+        b.add_line(g_bridle, prev, node, None);
+        welds.push(target);
+    }
+    b.finish_element_nodes();
+    let g = b.group("plates", Role::Plates, None);
+    b.set_nodes(g, 0..n_plates);
+    let g = b.group("buoys", Role::Buoys, None);
+    b.set_nodes(g, buoys.iter().copied());
+    b.mesh.objects.push(Object {
+        name: name.to_string(),
+        kind: ObjectKind::Frame,
+        origins: vec![[grid.origin[0], grid.origin[1], -grid.depth]],
+        net: None,
+        counts: None,
+        source_node_tags: Vec::new(),
+    });
+    Ok((b.mesh, buoys, welds))
+}
+
+/// An anchor line from `anchor` (fixed, on the seabed `zb`) to `fairlead`: consecutive parts
+/// (group name, section, unstretched length) from the anchor, each with elements of about
+/// `el`; initial shape the inextensible catenary of the total length, projected onto the
+/// seabed. Groups as a `[[line]]` (`anchor`, `fairlead`, `line_nodes`, `fixed` = anchor).
+pub fn anchor_line(
+    name: &str,
+    anchor: Point3<f64>,
+    fairlead: Point3<f64>,
+    parts: &[(&str, Section, f64)],
+    el: f64,
+    zb: f64,
+) -> Result<Mesh> {
+    let total: f64 = parts.iter().map(|p| p.2).sum();
+    let counts: Vec<usize> = parts.iter().map(|p| segments(p.2, el)).collect();
+    let n: usize = counts.iter().sum();
+    let mut pts = catenary_nodes(anchor, fairlead, total, n)
+        .ok_or_else(|| MeshError::inconsistent(name, "anchor and fairlead coincide"))?;
+    for p in pts.iter_mut() {
+        p.z = p.z.max(zb);
+    }
+    let mut b = MeshBuilder::default();
+    let mut notices = Vec::new();
+    let chord = (fairlead - anchor).norm();
+    if total < chord && (chord - total) / total > 0.01 {
+        notices.push(format!(
+            "warning: {name}: length {total} m is shorter than the chord {chord:.4} m; the line \
+             starts stretched by {:.2} %",
+            100.0 * (chord - total) / total
+        ));
+    }
+    for p in pts {
+        b.add_node(p);
+    }
+    let mut k0 = 0;
+    for ((g, section, len), &m) in parts.iter().zip(&counts) {
+        let gi = b.group(g, Role::MooringLine, Some(section.clone()));
+        for k in k0..k0 + m {
+            b.add_line(gi, k, k + 1, Some(len / m as f64));
+        }
+        k0 += m;
+    }
+    b.finish_element_nodes();
+    for (g, role, nodes) in [
+        ("anchor", Role::Anchor, vec![0]),
+        ("fairlead", Role::Fairlead, vec![n]),
+        ("line_nodes", Role::LineNodes, (0..=n).collect()),
+        ("fixed", Role::Fixed, vec![0]),
+    ] {
+        let gi = b.group(g, role, None);
+        b.set_nodes(gi, nodes);
+    }
+    b.mesh.objects.push(Object {
+        name: name.to_string(),
+        kind: ObjectKind::Line,
+        origins: vec![[anchor.x, anchor.y, anchor.z]],
+        net: None,
+        counts: None,
+        source_node_tags: Vec::new(),
+    });
+    b.mesh.notices = notices;
+    Ok(b.mesh)
+}
+
+/// Merges the last `targets.len()` nodes of the mesh, in order, into the existing nodes
+/// `targets` (a part's end joined to a node of another part); elements, groups and weights
+/// follow.
+pub fn weld_tail(mesh: &mut Mesh, targets: &[usize]) {
+    let k = targets.len();
+    let first = mesh.nodes.len() - k;
+    mesh.nodes.truncate(first);
+    mesh.node_owner.truncate(first);
+    let map = |n: &mut usize| {
+        if *n >= first {
+            *n = targets[*n - first];
+        }
+    };
+    for l in &mut mesh.lines {
+        l.nodes.iter_mut().for_each(map);
+    }
+    for p in &mut mesh.panels {
+        match &mut p.nodes {
+            PanelNodes::Tri(n) => n.iter_mut().for_each(map),
+            PanelNodes::Quad(n) => n.iter_mut().for_each(map),
+        }
+    }
+    for g in &mut mesh.groups {
+        g.nodes.iter_mut().for_each(map);
+        g.nodes.sort_unstable();
+        g.nodes.dedup();
+    }
+    for w in &mut mesh.weights {
+        map(&mut w.node);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cage::CageType;
+
+    fn section(d: f64) -> Option<SectionOverride> {
+        Some(SectionOverride {
+            diameter: Some(d),
+            ea: Some(1e7),
+            mass_per_length: Some(2.0),
+            ..Default::default()
+        })
+    }
+
+    fn farm(rows: u32, columns: u32) -> FarmParams {
+        FarmParams {
+            name: Some("f".into()),
+            rows,
+            columns,
+            spacing: 40.0,
+            grid_depth: 5.0,
+            anchor_length: 120.0,
+            chain_length: Some(30.0),
+            frame: section(0.05),
+            bridle: section(0.04),
+            anchor: section(0.05),
+            chain: section(0.06),
+            buoy: Some(BuoyParams {
+                volume: 2.0,
+                ..Default::default()
+            }),
+            ..Default::default()
+        }
+    }
+
+    fn cage() -> CageParams {
+        let mut c = CageParams::new(CageType::Csm);
+        c.diameter = Some(20.0);
+        c.depth = Some(6.0);
+        c.element_length = Some(4.0);
+        c
+    }
+
+    #[test]
+    fn counts_names_positions_and_joints() {
+        let (r, c) = (2usize, 3usize);
+        let f = farm(r as u32, c as u32)
+            .build(&cage(), Some(-40.0))
+            .unwrap();
+        let n = f.counts("f");
+        assert_eq!(n.cages, r * c);
+        assert_eq!(n.plates, (r + 1) * (c + 1));
+        assert_eq!(n.buoys, (r + 1) * (c + 1));
+        assert_eq!(n.anchor_lines, 2 * (r + c + 2));
+        // 40 m frame segments of 5 m elements.
+        assert_eq!(n.frame_elements, (r * (c + 1) + c * (r + 1)) * 8);
+        let m = &f.mesh;
+        let names: Vec<&str> = m.objects.iter().map(|o| o.name.as_str()).collect();
+        for want in [
+            "f/cage_r1c1",
+            "f/cage_r2c3",
+            "f/frame",
+            "f/anchor_n3",
+            "f/anchor_w1",
+        ] {
+            assert!(names.contains(&want), "{want} not in {names:?}");
+        }
+        // Plates on the grid, centred on the origin.
+        let plates = m.resolve_nodes("f/frame/plates").unwrap();
+        assert_eq!(plates.len(), 12);
+        let p0 = m.nodes[plates[0]];
+        assert!((p0 - Point3::new(-60.0, -40.0, -5.0)).norm() < 1e-12);
+        // Cage r1c2 centred in its cell, collar at z = 0 and free.
+        let ring = m.resolve_nodes("f/cage_r1c2/top_ring").unwrap();
+        let mean = ring
+            .iter()
+            .fold(Vector3::zeros(), |a, &i| a + m.nodes[i].coords)
+            / ring.len() as f64;
+        assert!((mean - Vector3::new(0.0, -20.0, 0.0)).norm() < 1e-9);
+        let fixed = m.fixed_nodes();
+        assert!(ring.iter().all(|i| !fixed.contains(i)));
+        // Only the anchors are fixed, all on the seabed.
+        assert_eq!(fixed.len(), n.anchor_lines);
+        assert!(fixed.iter().all(|&i| (m.nodes[i].z + 40.0).abs() < 1e-12));
+        // Every bridle runs from a plate to a collar node (welded: no free duplicate nodes).
+        let fi = m.objects.iter().position(|o| o.name == "f/frame").unwrap() as u32;
+        let bridles = m.group(fi, "bridles").unwrap();
+        let ends: Vec<usize> = bridles
+            .nodes
+            .iter()
+            .copied()
+            .filter(|nd| ring.contains(nd) || plates.contains(nd))
+            .collect();
+        assert!(ends.iter().filter(|nd| ring.contains(nd)).count() == 4);
+        // Anchor lines: chain then rope, the fairlead is the plate.
+        let ai = m
+            .objects
+            .iter()
+            .position(|o| o.name == "f/anchor_e1")
+            .unwrap() as u32;
+        let fair = m.group(ai, "fairlead").unwrap().nodes[0];
+        assert!(plates.contains(&fair));
+        let chain = m.group(ai, "chain").unwrap();
+        let l: f64 = chain
+            .lines
+            .iter()
+            .map(|&e| m.lines[e].rest_length.unwrap())
+            .sum();
+        assert!((l - 30.0).abs() < 1e-9);
+        let rope = m.group(ai, "rope").unwrap();
+        let l: f64 = rope
+            .lines
+            .iter()
+            .map(|&e| m.lines[e].rest_length.unwrap())
+            .sum();
+        assert!((l - 90.0).abs() < 1e-9);
+        // Nothing dangles: every node is used by an element.
+        let mut used = vec![false; m.nodes.len()];
+        for e in &m.lines {
+            used[e.nodes[0]] = true;
+            used[e.nodes[1]] = true;
+        }
+        assert!(used.iter().all(|u| *u));
+    }
+
+    #[test]
+    fn bad_grids_and_missing_parts_are_named() {
+        let err = |f: FarmParams| f.build(&cage(), Some(-40.0)).unwrap_err().to_string();
+        let e = err(FarmParams {
+            rows: 0,
+            ..farm(1, 1)
+        });
+        assert!(e.contains("rows") && e.contains(">= 1"), "{e}");
+        let e = err(FarmParams {
+            frame: None,
+            ..farm(1, 1)
+        });
+        assert!(e.contains("frame") && e.contains("[farm.frame]"), "{e}");
+        let e = err(FarmParams {
+            buoy: None,
+            ..farm(1, 1)
+        });
+        assert!(e.contains("buoy"), "{e}");
+        let e = err(FarmParams {
+            grid_depth: 50.0,
+            ..farm(1, 1)
+        });
+        assert!(e.contains("grid_depth"), "{e}");
+        let e = err(FarmParams {
+            anchor_length: 20.0,
+            chain_length: None,
+            chain: None,
+            ..farm(1, 1)
+        });
+        assert!(e.contains("anchor_length"), "{e}");
+        let mut c = cage();
+        c.fixed = Some(vec!["top_ring".into()]);
+        let e = farm(1, 1).build(&c, Some(-40.0)).unwrap_err().to_string();
+        assert!(e.contains("cage.fixed"), "{e}");
+        let e = farm(1, 1).build(&cage(), None).unwrap_err().to_string();
+        assert!(e.contains("depth"), "{e}");
+    }
+}
