@@ -92,6 +92,10 @@ pub struct SeabedSpec {
     /// c_b [Pa·s/m] (default 3e5).
     #[serde(default = "default_cbot")]
     pub cbot: f64,
+    /// Penetration δ_c over which c_b ramps in from zero [m] (default 0.01), so that the contact
+    /// force is continuous at touchdown.
+    #[serde(default = "default_damping_depth")]
+    pub damping_depth: f64,
     /// Axial seabed friction coefficient μ_a, along the line (default 0: no friction;
     /// docs/theory/fem.md#seabed-friction).
     #[serde(default)]
@@ -144,6 +148,9 @@ fn default_kbot() -> f64 {
 fn default_cbot() -> f64 {
     3e5
 }
+fn default_damping_depth() -> f64 {
+    1e-2
+}
 fn default_slip_velocity() -> f64 {
     1e-2
 }
@@ -153,6 +160,7 @@ impl Default for SeabedSpec {
         Self {
             kbot: default_kbot(),
             cbot: default_cbot(),
+            damping_depth: default_damping_depth(),
             friction_axial: 0.0,
             friction_transverse: None,
             slip_velocity: default_slip_velocity(),
@@ -731,6 +739,14 @@ impl SeaSpec {
             if !(v >= 0.0 && v.is_finite()) {
                 return Err(EnvError::range(key, v, "a finite number >= 0"));
             }
+        }
+        let dc = self.seabed.damping_depth;
+        if !(dc > 0.0 && dc.is_finite()) {
+            return Err(EnvError::range(
+                "sea.seabed.damping_depth",
+                dc,
+                "a penetration in m, finite and > 0 (default 0.01)",
+            ));
         }
         self.seabed.validate_friction()?;
         let current = self.build_current(&c)?;

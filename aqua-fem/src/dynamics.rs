@@ -58,6 +58,9 @@ pub struct DynamicSettings {
     pub midpoint: bool,
 }
 
+/// Smallest fraction of a Newton update that backtracking tries.
+const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
+
 fn one() -> usize {
     1
 }
@@ -757,8 +760,9 @@ impl<'m> DynamicSolver<'m> {
                     self.state.t = if landed { target } else { t + h };
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
-                    // Easy step: few factorisations (= iterations with full Newton).
-                    if self.attempt_factorisations <= 4 {
+                    // Easy step: at most half the iteration budget (factorisations = iterations
+                    // with full Newton).
+                    if self.attempt_factorisations <= (self.st.max_iter / 2).max(4) {
                         self.good_steps += 1;
                         if self.good_steps >= 4 && self.dt_cur < self.st.dt {
                             self.dt_cur = (2.0 * self.dt_cur).min(self.st.dt);
@@ -886,6 +890,9 @@ impl<'m> DynamicSolver<'m> {
         let mut hist = Vec::new();
         let mut dx_prev = f64::INFINITY;
         let mut r0 = f64::NAN;
+        // Scale of the last update applied (0: none yet) and how often the residual rose.
+        let mut step_scale = 0.0f64;
+        let mut increases = 0usize;
         let fail = |reason: String, hist: &Vec<f64>| Attempt {
             reason,
             history: hist.clone(),
@@ -946,6 +953,21 @@ impl<'m> DynamicSolver<'m> {
                 strain_check(&self.sys, &hist)?;
                 return self.finish_attempt(provider, t1, it, hist);
             }
+            if rn > rn_prev && step_scale > 0.0 {
+                increases += 1;
+                if increases >= 2 && step_scale > MIN_STEP_SCALE {
+                    // The residual rose again: a cycle across a kink of the force law (seabed
+                    // touchdown, slack switch). Backtrack along the last update instead of
+                    // taking another full step (docs/theory/fem.md#backtracking).
+                    let back = 0.5 * step_scale;
+                    for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+                        self.x1[gd / 3][gd % 3] -= back * self.dx[f];
+                    }
+                    step_scale -= back;
+                    dx_prev *= 0.5;
+                    continue;
+                }
+            }
             if !refactor && it > 0 && rn > 0.5 * rn_prev {
                 // Contraction below 2×: re-form J at this iterate.
                 refactor = true;
@@ -982,6 +1004,7 @@ impl<'m> DynamicSolver<'m> {
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
                 self.x1[gd / 3][gd % 3] += self.dx[f];
             }
+            step_scale = 1.0;
             dx_prev = dinf;
         }
         Err(fail(

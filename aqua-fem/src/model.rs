@@ -14,6 +14,13 @@ pub const DEFAULT_WATER_DENSITY: f64 = 1025.0;
 /// Default compression ratio r_c of cable elements.
 pub const DEFAULT_COMPRESSION_RATIO: f64 = 0.0;
 
+/// Default penetration over which the seabed damping ramps in [m].
+pub const DEFAULT_BED_DAMPING_DEPTH: f64 = 1e-2;
+
+fn default_damping_depth() -> f64 {
+    DEFAULT_BED_DAMPING_DEPTH
+}
+
 /// Flat seabed at z = −depth with a penalty contact law (MoorDyn's `kBot`/`cBot`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Seabed {
@@ -23,6 +30,10 @@ pub struct Seabed {
     pub stiffness: f64,
     /// Normal damping c_b per unit contact area [Pa·s/m]. Default 3e5.
     pub damping: f64,
+    /// Penetration δ_c over which the damping ramps in linearly from zero [m] (> 0). Default
+    /// 1e-2. Keeps the contact force continuous at touchdown (docs/theory/fem.md#seabed-contact).
+    #[serde(default = "default_damping_depth")]
+    pub damping_depth: f64,
     /// Regularised Coulomb friction (docs/theory/fem.md#seabed-friction). Default off.
     #[serde(default)]
     pub friction: SeabedFriction,
@@ -35,6 +46,7 @@ impl Seabed {
             depth,
             stiffness: 3e6,
             damping: 3e5,
+            damping_depth: DEFAULT_BED_DAMPING_DEPTH,
             friction: SeabedFriction::default(),
         }
     }
@@ -526,6 +538,9 @@ impl ModelBuilder {
             }
             if !(s.damping.is_finite() && s.damping >= 0.0) {
                 return Err(invalid("seabed cbot [Pa s/m]", s.damping, ">= 0"));
+            }
+            if !(s.damping_depth.is_finite() && s.damping_depth > 0.0) {
+                return Err(invalid("seabed damping_depth [m]", s.damping_depth, "> 0"));
             }
             s.friction.validate()?;
         }

@@ -499,10 +499,12 @@ impl System {
         let mut bed_k = 0.0;
         let mut bed_c = 0.0;
         let mut zs = f64::NEG_INFINITY;
+        let mut ramp = 1.0;
         if let Some(s) = model.env.seabed {
             zs = -s.depth;
             bed_k = s.stiffness;
             bed_c = if o.dynamic { s.damping } else { 0.0 };
+            ramp = s.damping_depth;
         }
         let secant = self.secant.as_ref();
         for i in 0..n {
@@ -518,27 +520,25 @@ impl System {
                 // (docs/theory/fem.md#energy-consistent-midpoint).
                 let (z0, z1) = (x0[i][2], x1[i][2]);
                 let (fe, ke) = bed_discrete_gradient(kb, zs, z0, z1);
-                let fd = if d > 0.0 {
-                    -bed_c * coef * v[i][2]
-                } else {
-                    0.0
-                };
+                let (s, ds) = damping_ramp(d, ramp);
+                let fd = -bed_c * coef * s * v[i][2];
                 if fe + fd > 0.0 {
                     self.fbed[i][2] += fe + fd;
-                    self.bed_kz[i] += ke;
-                    if d > 0.0 {
-                        self.bed_cz[i] += bed_c * coef;
-                    }
+                    // Stored as −∂f/∂z_m = 2·(−∂f/∂z1), like `ke`.
+                    self.bed_kz[i] += ke - bed_c * coef * ds * v[i][2];
+                    self.bed_cz[i] += bed_c * coef * s;
                 }
                 let (fp, kpp) = bed_discrete_gradient(kp, zs, z0, z1);
                 self.fbed[i][2] += fp;
                 self.bed_kz[i] += kpp;
             } else if d > 0.0 {
-                let f = kb * d - bed_c * coef * v[i][2];
+                // The damping ramps in over δ_c so that f is continuous at touchdown.
+                let (s, ds) = damping_ramp(d, ramp);
+                let f = kb * d - bed_c * coef * s * v[i][2];
                 if f > 0.0 {
                     self.fbed[i][2] += f;
-                    self.bed_kz[i] += kb;
-                    self.bed_cz[i] += bed_c * coef;
+                    self.bed_kz[i] += kb - bed_c * coef * ds * v[i][2];
+                    self.bed_cz[i] += bed_c * coef * s;
                 }
                 self.fbed[i][2] += kp * d;
                 self.bed_kz[i] += kp;
@@ -1007,6 +1007,18 @@ fn load_element<P: LoadProvider + ?Sized>(
 /// the force f_z = −(E(z1) − E(z0))/(z1 − z0) [N] and 2·(−∂f_z/∂z1) [N/m], the midpoint rule's
 /// tangent; the limit k·max(z_s − z̄, 0) when the step barely moves
 /// (docs/theory/fem.md#energy-consistent-midpoint).
+/// The seabed damping's ramp s(δ) = min(1, δ/δ_c) for δ > 0 (0 otherwise) and ds/dδ
+/// (docs/theory/fem.md#seabed-contact).
+fn damping_ramp(d: f64, depth: f64) -> (f64, f64) {
+    if d <= 0.0 {
+        (0.0, 0.0)
+    } else if d < depth {
+        (d / depth, 1.0 / depth)
+    } else {
+        (1.0, 0.0)
+    }
+}
+
 fn bed_discrete_gradient(k: f64, zs: f64, z0: f64, z1: f64) -> (f64, f64) {
     if k == 0.0 {
         return (0.0, 0.0);

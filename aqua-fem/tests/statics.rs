@@ -158,6 +158,7 @@ fn touchdown_on_the_seabed_in_water() {
             depth,
             stiffness: 3e8,
             damping: 3e5,
+            damping_depth: 1e-2,
             friction: SeabedFriction::default(),
         }),
         ..Default::default()

@@ -57,6 +57,7 @@ pub(super) fn environment(scene: &Scene, constants: &Constants) -> Environment {
                 depth: h,
                 stiffness: scene.sea.seabed.kbot,
                 damping: scene.sea.seabed.cbot,
+                damping_depth: scene.sea.seabed.damping_depth,
                 friction: SeabedFriction {
                     axial: scene.sea.seabed.friction_axial,
                     transverse: scene.sea.seabed.transverse_friction(),
