@@ -232,11 +232,22 @@ fn example(name: &str) -> String {
     .unwrap()
 }
 
+/// The bundled moored cage floats; the same cage on the old example's heavy chains (50 kg/m,
+/// 95 m, 0.35 m collar pipe) sinks its collar, and the run says so. The balance, with the
+/// collar's net buoyancy about 74 kN: four chains hanging ≥ 40 m × 426 N/m each plus 28.8 kN of
+/// sinkers exceed it; four 10 kg/m chains (≤ 4 × 100 m × 85 N/m) with a 0.5 m pipe do not.
 #[test]
-fn the_moored_cage_sinks_its_collar_and_is_told_so() {
+fn the_moored_cage_floats_and_its_heavy_variant_is_told_it_sinks() {
     let text =
         example("moored-cage.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
     let (out, _) = statics(&text);
+    assert!(!out.codes.contains(&"design/sunk-float"), "{:?}", out.codes);
+    let heavy = text
+        .replace("mass_per_length = 10.0", "mass_per_length = 50.0")
+        .replace("length = 100.0", "length = 95.0")
+        .replace("collar.pipe_diameter = 0.5", "collar.pipe_diameter = 0.35");
+    assert!(heavy.contains("mass_per_length = 50.0") && heavy.contains("pipe_diameter = 0.35"));
+    let (out, _) = statics(&heavy);
     assert!(out.codes.contains(&"design/sunk-float"), "{:?}", out.codes);
 }
 
