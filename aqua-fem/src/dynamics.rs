@@ -760,9 +760,8 @@ impl<'m> DynamicSolver<'m> {
                     self.state.t = if landed { target } else { t + h };
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
-                    // Easy step: at most half the iteration budget (factorisations = iterations
-                    // with full Newton).
-                    if self.attempt_factorisations <= (self.st.max_iter / 2).max(4) {
+                    // Easy step: few factorisations (= iterations with full Newton).
+                    if self.attempt_factorisations <= 4 {
                         self.good_steps += 1;
                         if self.good_steps >= 4 && self.dt_cur < self.st.dt {
                             self.dt_cur = (2.0 * self.dt_cur).min(self.st.dt);
