@@ -12,7 +12,8 @@
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
 //! [[mesh]]                # aqua-mesh GmshParams (cages.md#gmsh-import) + net.* hydro keys
-//! [[farm]]                # aqua-mesh FarmParams (cages.md#farm-grid); [farm.cage] as [[cage]]
+//! [[farm]]                # aqua-mesh FarmParams (cages.md#farm-grid); [farm.cage] as [[cage]],
+//!                         # [[farm.slot]] per cell (crate::scene::slots)
 //! [wake]                  # cage_to_cage (hydrodynamics.md#cage-to-cage-wake)
 //! [[group]]               # per element group: section overrides + Morison keys
 //! [[point]]               # point bodies on node groups (fem.md#loads)
@@ -1072,15 +1073,21 @@ pub fn scene_keys() -> Vec<String> {
     }
     let mut out = Vec::new();
     walk(&mut Vec::new(), &mut out);
-    // `[farm.cage]` is typed apart from the farm's own keys, as a `[[cage]]`.
+    // `[farm.cage]` and `[[farm.slot]]` are typed apart from the farm's own keys, as a
+    // `[[cage]]` (a slot with its own row, column and empty).
     let cage_keys: Vec<String> = out
         .iter()
-        .filter(|k| k.starts_with("cage."))
-        .map(|k| format!("farm.{k}"))
+        .filter_map(|k| k.strip_prefix("cage."))
+        .flat_map(|k| [format!("farm.cage.{k}"), format!("farm.slot.{k}")])
         .collect();
     out.extend(cage_keys);
+    out.extend(
+        fields_of::<slots::SlotKeys>()
+            .into_iter()
+            .map(|k| format!("farm.slot.{k}")),
+    );
     // Keys split off before the mesh types see them.
-    for section in ["cage", "panel", "mesh", "farm.cage"] {
+    for section in ["cage", "panel", "mesh", "farm.cage", "farm.slot"] {
         out.extend(
             fields_of::<NetHydro>()
                 .into_iter()
