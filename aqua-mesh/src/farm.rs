@@ -923,12 +923,7 @@ mod tests {
         let names: Vec<&str> = f.cages.iter().map(String::as_str).collect();
         assert_eq!(
             names,
-            [
-                "f/cage_r1c1",
-                "f/cage_r1c2",
-                "f/cage_r2c1",
-                "f/cage_r2c2"
-            ]
+            ["f/cage_r1c1", "f/cage_r1c2", "f/cage_r2c1", "f/cage_r2c2"]
         );
         let n = f.counts("f");
         assert_eq!((n.cages, n.bridles), (4, 16));

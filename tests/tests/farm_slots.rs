@@ -126,7 +126,10 @@ fn a_slot_cage_builds_as_a_standalone_cage_of_the_same_keys() {
             "type = \"CCT\"\ndiameter = 16.0\nbottom_ratio = 0.75\n",
         ),
         // An SSM: the farm cage's diameter is not inherited (a size key, and not an SSM key).
-        ("type = \"SSM\"\nside = 14.0\n", "type = \"SSM\"\nside = 14.0\n"),
+        (
+            "type = \"SSM\"\nside = 14.0\n",
+            "type = \"SSM\"\nside = 14.0\n",
+        ),
     ];
     for (k, (slot, own)) in cases.iter().enumerate() {
         let farm = mesh_of(
@@ -138,28 +141,46 @@ fn a_slot_cage_builds_as_a_standalone_cage_of_the_same_keys() {
             names.contains(&"farm/cage_r1c1") && names.contains(&"farm/cage_r1c2"),
             "{names:?}"
         );
-        let alone = mesh_of("alone", &format!("[[cage]]\nname = \"c\"\n{own}{}", inherited()));
+        let alone = mesh_of(
+            "alone",
+            &format!("[[cage]]\nname = \"c\"\n{own}{}", inherited()),
+        );
         let (a, b) = (counts(&farm, "farm/cage_r1c2"), counts(&alone, "c"));
         println!("case {k}: slot cage (nodes, lines, panels) = {a:?}, standalone {b:?}");
         assert_eq!(a, b, "case {k}");
         // Slot (1, 1) is still the farm's 20 m CSM: its own standalone twin.
         let csm = mesh_of(
             "csm",
-            &format!("[[cage]]\nname = \"c\"\ntype = \"CSM\"\ndiameter = 20.0\n{}", inherited()),
+            &format!(
+                "[[cage]]\nname = \"c\"\ntype = \"CSM\"\ndiameter = 20.0\n{}",
+                inherited()
+            ),
         );
         assert_eq!(counts(&farm, "farm/cage_r1c1"), counts(&csm, "c"));
         // Sizes from the node positions, about the cell centres (x_c = (c − 1/2 − 1)·40 m).
         let (_, _, lo, hi) = extent(&farm, "farm/cage_r1c1/net_top", [-20.0, 0.0]);
-        assert!((lo - 10.0).abs() < 1e-9 && (hi - 10.0).abs() < 1e-9, "{lo} {hi}");
+        assert!(
+            (lo - 10.0).abs() < 1e-9 && (hi - 10.0).abs() < 1e-9,
+            "{lo} {hi}"
+        );
         let top = extent(&farm, "farm/cage_r1c2/net_top", [20.0, 0.0]);
         if k == 0 {
             // Circle of radius d/2 = 8 m at the top, bottom_ratio · 8 = 6 m at the bottom.
-            assert!((top.2 - 8.0).abs() < 1e-9 && (top.3 - 8.0).abs() < 1e-9, "{top:?}");
+            assert!(
+                (top.2 - 8.0).abs() < 1e-9 && (top.3 - 8.0).abs() < 1e-9,
+                "{top:?}"
+            );
             let bot = extent(&farm, "farm/cage_r1c2/net_bottom", [20.0, 0.0]);
-            assert!((bot.2 - 6.0).abs() < 1e-9 && (bot.3 - 6.0).abs() < 1e-9, "{bot:?}");
+            assert!(
+                (bot.2 - 6.0).abs() < 1e-9 && (bot.3 - 6.0).abs() < 1e-9,
+                "{bot:?}"
+            );
         } else {
             // Square of half-width side/2 = 7 m, corners at 7√2 m.
-            assert!((top.0 - 7.0).abs() < 1e-9 && (top.1 - 7.0).abs() < 1e-9, "{top:?}");
+            assert!(
+                (top.0 - 7.0).abs() < 1e-9 && (top.1 - 7.0).abs() < 1e-9,
+                "{top:?}"
+            );
             assert!((top.3 - 7.0 * 2f64.sqrt()).abs() < 1e-9, "{top:?}");
         }
     }
@@ -217,7 +238,10 @@ fn an_empty_slot_has_no_cage_and_no_bridles() {
     .unwrap();
     let prep = aqua_sim::prepare(&path).unwrap();
     let c = &prep.built.farms[0].counts;
-    assert_eq!((c.cages, c.bridles, c.plates, c.anchor_lines), (1, 4, 6, 10));
+    assert_eq!(
+        (c.cages, c.bridles, c.plates, c.anchor_lines),
+        (1, 4, 6, 10)
+    );
     assert_eq!(prep.built.farms[0].cages, ["farm/cage_r1c1"]);
 }
 
@@ -245,7 +269,11 @@ fn each_cage_wake_factor_comes_from_its_own_net() {
             farm_sn
         };
         println!("{name}: r = {:.6} (Sn = {sn:.4})", s.factor);
-        assert!((s.factor - loland(sn)).abs() < 1e-12, "{name}: {}", s.factor);
+        assert!(
+            (s.factor - loland(sn)).abs() < 1e-12,
+            "{name}: {}",
+            s.factor
+        );
     }
 }
 
@@ -293,13 +321,23 @@ fn bad_slots_name_file_line_value_and_what_is_valid() {
         "\n[[farm.slot]]\nrow = 1\ncolumn = 2\nempty = true\n\n[[farm.slot]]\nrow = 1\n\
          column = 2\ndiameter = 12.0\n",
         2,
-        &["[[farm.slot]] #2", "row = 1, column = 2", "already given by [[farm.slot]] #1"],
+        &[
+            "[[farm.slot]] #2",
+            "row = 1, column = 2",
+            "already given by [[farm.slot]] #1",
+        ],
     );
     check(
         "unknown",
         "\n[[farm.slot]]\nrow = 1\ncolumn = 2\ndiametre = 12.0\n",
         1,
-        &["[[farm.slot]] #1", "diametre", "unknown field", "`diameter`", "row, column, empty"],
+        &[
+            "[[farm.slot]] #1",
+            "diametre",
+            "unknown field",
+            "`diameter`",
+            "row, column, empty",
+        ],
     );
     check(
         "unknown-net",

@@ -66,13 +66,13 @@ fn cage_type(v: Option<&Value>) -> Option<CageType> {
 fn merged_cage(base: &Table, slot: Table) -> Table {
     let mut merged = base.clone();
     if SIZE_KEYS.iter().any(|k| slot.contains_key(*k)) {
-        merged.retain(|k, _| !SIZE_KEYS.contains(&&*k));
+        merged.retain(|k, _| !SIZE_KEYS.contains(&k));
     }
     if let Some(kind) = cage_type(slot.get("type"))
         && cage_type(base.get("type")) != Some(kind)
     {
         let valid = kind.valid_keys();
-        merged.retain(|k, _| valid.contains(&&*k));
+        merged.retain(|k, _| valid.contains(&k));
     }
     merge_over(&mut merged, slot);
     merged
@@ -141,7 +141,8 @@ impl Ctx<'_> {
         let mut out = Vec::new();
         for (k, v) in list.into_iter().enumerate() {
             let at = lines.get(k).copied().unwrap_or(line);
-            let err = |msg: String| self.err("farm", i, at, format!("[[farm.slot]] #{}: {msg}", k + 1));
+            let err =
+                |msg: String| self.err("farm", i, at, format!("[[farm.slot]] #{}: {msg}", k + 1));
             let Value::Table(mut t) = v else {
                 return Err(err(format!(
                     "{v}: a slot must be a table with row, column and cage keys or empty = true"
