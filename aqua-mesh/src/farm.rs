@@ -7,13 +7,13 @@
 //!   z = −`grid_depth`; plate (i, j), i = 0..=columns along x and j = 0..=rows along y, is node
 //!   `plates[j·(columns + 1) + i]` of the frame;
 //! * **cages**: slot (r, c), r = 1..=rows along y and c = 1..=columns along x, is the cell
-//!   between plates (c − 1, r − 1) and (c, r); its cage (one `cage` table for every slot,
-//!   `fixed = []`: the collar floats) is the object `<farm>/cage_r<r>c<c>` with its origin at
-//!   the cell centre, z = 0;
+//!   between plates (c − 1, r − 1) and (c, r); its cage (the caller's cage for that slot, or
+//!   none for an empty slot; `fixed = []`: the collar floats) is the object
+//!   `<farm>/cage_r<r>c<c>` with its origin at the cell centre, z = 0;
 //! * the **frame** object `<farm>/frame`: `frame_lines` along the grid lines between
-//!   neighbouring plates, `bridles` from the four corner plates of each cell to the collar
-//!   (`top_ring`) node of its cage nearest to that corner, `pendants` from every plate straight
-//!   up to a surface **buoy** node (node groups `plates` and `buoys`);
+//!   neighbouring plates, `bridles` from the four corner plates of each cell that holds a cage
+//!   to the collar (`top_ring`) node of its cage nearest to that corner, `pendants` from every
+//!   plate straight up to a surface **buoy** node (node groups `plates` and `buoys`);
 //! * **anchor lines** `<farm>/anchor_<e|w|n|s><k>` from every outer plate outwards along the
 //!   grid axes (one per edge plate, two at a corner): `e` runs along +x from the plates
 //!   i = columns, `w` along −x from i = 0, `n` along +y from j = rows, `s` along −y from j = 0;
@@ -148,6 +148,27 @@ impl FarmParams {
         self.name.clone().unwrap_or_else(|| "farm0".into())
     }
 
+    /// A slot's cage may not set what the farm sets: `name`, `origins`, a non-empty `fixed`
+    /// (`what` names the table in the message, e.g. `cage` or `slot r1c2: cage`).
+    pub fn check_cage(&self, what: &str, cage: &CageParams) -> Result<()> {
+        for key in ["origins", "fixed", "name"] {
+            let set = match key {
+                "origins" => cage.origins.is_some(),
+                "fixed" => cage.fixed.as_ref().is_some_and(|f| !f.is_empty()),
+                _ => cage.name.is_some(),
+            };
+            if set {
+                return Err(MeshError::param(
+                    &self.name(),
+                    &format!("{what}.{key}"),
+                    "(set)",
+                    "is set by the farm (slot names and positions; collars float, so fixed = [])",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The grid checks: counts, lengths and the section tables that must be there.
     fn check(&self) -> Result<()> {
         let obj = self.name();
@@ -212,6 +233,18 @@ impl FarmParams {
     /// Builds the farm with `cage` in every slot; `seabed_z` [m] is the seabed level (−depth),
     /// required for the anchors.
     pub fn build(&self, cage: &CageParams, seabed_z: Option<f64>) -> Result<FarmMesh> {
+        self.check_cage("cage", cage)?;
+        self.build_slots(|_, _| Some(cage.clone()), seabed_z)
+    }
+
+    /// Builds the farm with `slot(r, c)` in slot (r, c) (1-based row along y, column along
+    /// x): its cage, or `None` for an empty cell (no cage and none of its four bridles). At
+    /// least one slot must hold a cage. `seabed_z` [m] is the seabed level (−depth).
+    pub fn build_slots(
+        &self,
+        slot: impl Fn(usize, usize) -> Option<CageParams>,
+        seabed_z: Option<f64>,
+    ) -> Result<FarmMesh> {
         self.check()?;
         let name = self.name();
         let obj = name.as_str();
@@ -230,21 +263,6 @@ impl FarmParams {
                 self.grid_depth,
                 format!("must be less than the water depth {} m", -zb),
             ));
-        }
-        for key in ["origins", "fixed", "name"] {
-            let set = match key {
-                "origins" => cage.origins.is_some(),
-                "fixed" => cage.fixed.as_ref().is_some_and(|f| !f.is_empty()),
-                _ => cage.name.is_some(),
-            };
-            if set {
-                return Err(MeshError::param(
-                    obj,
-                    &format!("cage.{key}"),
-                    "(set)",
-                    "is set by the farm (slot names and positions; collars float, so fixed = [])",
-                ));
-            }
         }
         let frame = line_section(obj, "frame", self.frame.as_ref(), "rope")?;
         let bridle = line_section(obj, "bridle", self.bridle.as_ref(), "rope")?;
@@ -275,9 +293,10 @@ impl FarmParams {
         let mut collars = Vec::new();
         for r in 1..=self.rows as usize {
             for c in 1..=self.columns as usize {
+                let Some(mut p) = slot(r, c) else { continue };
+                self.check_cage(&format!("slot r{r}c{c}: cage"), &p)?;
                 let cname = format!("{name}/cage_r{r}c{c}");
                 let centre = grid.cell_centre(c, r);
-                let mut p = cage.clone();
                 p.name = Some(cname.clone());
                 p.origins = Some(vec![[centre.x, centre.y, 0.0]]);
                 p.fixed = Some(Vec::new());
@@ -290,6 +309,14 @@ impl FarmParams {
                 collars.push(((c, r), centre, ring));
                 cages.push(cname);
             }
+        }
+        if cages.is_empty() {
+            return Err(MeshError::param(
+                obj,
+                "slot",
+                "(every slot empty)",
+                "at least one slot must hold a cage",
+            ));
         }
         let (frame_mesh, buoys_local, welds) = frame_object(
             &format!("{name}/frame"),
@@ -878,6 +905,72 @@ mod tests {
             used[e.nodes[1]] = true;
         }
         assert!(used.iter().all(|u| *u));
+    }
+
+    #[test]
+    fn slots_hold_their_own_cage_or_none() {
+        // Slot (1, 2) an SSM of side 14 m, slot (1, 3) empty, the rest the CSM of `cage()`.
+        let mut square = CageParams::new(CageType::Ssm);
+        square.side = Some(14.0);
+        square.depth = Some(6.0);
+        square.element_length = Some(3.5);
+        let slot = |_r: usize, c: usize| match c {
+            2 => Some(square.clone()),
+            3 => None,
+            _ => Some(cage()),
+        };
+        let f = farm(2, 3).build_slots(slot, Some(-40.0)).unwrap();
+        let names: Vec<&str> = f.cages.iter().map(String::as_str).collect();
+        assert_eq!(
+            names,
+            ["f/cage_r1c1", "f/cage_r1c2", "f/cage_r2c1", "f/cage_r2c2"]
+        );
+        let n = f.counts("f");
+        assert_eq!((n.cages, n.bridles), (4, 16));
+        assert_eq!(n.plates, 12);
+        let m = &f.mesh;
+        assert!(!m.objects.iter().any(|o| o.name.ends_with("c3")));
+        // The square collar (cages.md: half-width side/2 + frame_offset = 7 + 1 m): corner
+        // nodes at (±8, ±8) from the cell centre (0, −20).
+        let ring = m.resolve_nodes("f/cage_r1c2/top_ring").unwrap();
+        let far = ring
+            .iter()
+            .map(|&i| (m.nodes[i] - Point3::new(0.0, -20.0, 0.0)).norm())
+            .fold(0.0, f64::max);
+        assert!((far - 8.0 * 2f64.sqrt()).abs() < 1e-9, "{far}");
+        // 4 cages × 4 bridles, each ending on a collar node.
+        let fi = m.objects.iter().position(|o| o.name == "f/frame").unwrap() as u32;
+        let bridles = m.group(fi, "bridles").unwrap();
+        let mut collar_ends = 0;
+        for cage in &f.cages {
+            let ring = m.resolve_nodes(&format!("{cage}/top_ring")).unwrap();
+            collar_ends += bridles.nodes.iter().filter(|n| ring.contains(n)).count();
+        }
+        assert_eq!(collar_ends, 16);
+        // Plates of the column-3 edge (i = 3) carry no bridle.
+        let plates = m.resolve_nodes("f/frame/plates").unwrap();
+        for j in 0..=2 {
+            assert!(!bridles.nodes.contains(&plates[j * 4 + 3]));
+        }
+        let e = farm(1, 1)
+            .build_slots(|_, _| None, Some(-40.0))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at least one slot"), "{e}");
+        let e = farm(1, 2)
+            .build_slots(
+                |_, c| {
+                    let mut p = cage();
+                    if c == 2 {
+                        p.origins = Some(vec![[0.0; 3]]);
+                    }
+                    Some(p)
+                },
+                Some(-40.0),
+            )
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("slot r1c2: cage.origins"), "{e}");
     }
 
     #[test]

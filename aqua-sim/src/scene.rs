@@ -12,7 +12,8 @@
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
 //! [[mesh]]                # aqua-mesh GmshParams (cages.md#gmsh-import) + net.* hydro keys
-//! [[farm]]                # aqua-mesh FarmParams (cages.md#farm-grid); [farm.cage] as [[cage]]
+//! [[farm]]                # aqua-mesh FarmParams (cages.md#farm-grid); [farm.cage] as [[cage]],
+//!                         # [[farm.slot]] per cell (crate::scene::slots)
 //! [wake]                  # cage_to_cage (hydrodynamics.md#cage-to-cage-wake)
 //! [[group]]               # per element group: section overrides + Morison keys
 //! [[point]]               # point bodies on node groups (fem.md#loads)
@@ -35,6 +36,9 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use toml::{Spanned, Table, Value};
+
+mod slots;
+pub use slots::SlotSpec;
 
 /// Reads a file to a string, with an input error naming it.
 pub fn read_text(path: &Path) -> Result<String> {
@@ -510,14 +514,33 @@ pub struct MeshSpec {
     pub net_hydro: NetHydro,
 }
 
-/// A farm: the grid keys (aqua-mesh) and the cage used in every slot with its net keys.
+/// A farm: the grid keys (aqua-mesh), the cage of every slot with its net keys, and the
+/// slots that differ.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FarmSpec {
     /// Grid, frame, bridles, buoys and anchor lines (aqua-mesh).
     #[serde(flatten)]
     pub params: FarmParams,
-    /// `[farm.cage]`: the cage of every slot.
+    /// `[farm.cage]`: the cage of every slot without a `[[farm.slot]]`.
     pub cage: CageSpec,
+    /// `[[farm.slot]]`: cells with their own cage or none (at most one per cell).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub slot: Vec<Located<SlotSpec>>,
+}
+
+impl FarmSpec {
+    /// The cage of slot (r, c) (1-based): its `[[farm.slot]]`'s, else `[farm.cage]`; `None`
+    /// for an empty slot.
+    pub fn slot_cage(&self, r: usize, c: usize) -> Option<&CageSpec> {
+        match self
+            .slot
+            .iter()
+            .find(|s| s.value.row as usize == r && s.value.column as usize == c)
+        {
+            Some(s) => s.value.cage.as_ref(),
+            None => Some(&self.cage),
+        }
+    }
 }
 
 /// `[wake]`: scene-wide wake switches (docs/theory/hydrodynamics.md#cage-to-cage-wake).
@@ -686,20 +709,28 @@ impl Ctx<'_> {
         Ok(MeshSpec { params, net_hydro })
     }
 
-    /// A `[[farm]]`: its grid keys and its `[farm.cage]` (typed first, so that a mistake in
-    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s.
+    /// A `[[farm]]`: its grid keys, its `[farm.cage]` (typed first, so that a mistake in
+    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s, and its
+    /// `[[farm.slot]]`s (crate::scene::slots).
     fn farm(&self, i: usize, line: usize, mut t: Table) -> Result<FarmSpec> {
+        let slots = t.remove("slot");
         match t.remove("cage") {
             Some(Value::Table(mut c)) => {
+                let raw = c.clone();
                 let net_hydro = self.net_hydro("farm", i, line, &mut c)?;
                 let cage = self.typed("farm", i, line, "cage", c)?;
-                let params = self.typed("farm", i, line, "", t)?;
+                let params: FarmParams = self.typed("farm", i, line, "", t)?;
+                params
+                    .check_cage("cage", &cage)
+                    .map_err(|e| self.err("farm", i, line, e))?;
+                let slot = self.farm_slots(i, line, slots, &raw, &params)?;
                 Ok(FarmSpec {
                     params,
                     cage: CageSpec {
                         params: cage,
                         net_hydro,
                     },
+                    slot,
                 })
             }
             Some(other) => Err(self.err(
@@ -1042,15 +1073,21 @@ pub fn scene_keys() -> Vec<String> {
     }
     let mut out = Vec::new();
     walk(&mut Vec::new(), &mut out);
-    // `[farm.cage]` is typed apart from the farm's own keys, as a `[[cage]]`.
+    // `[farm.cage]` and `[[farm.slot]]` are typed apart from the farm's own keys, as a
+    // `[[cage]]` (a slot with its own row, column and empty).
     let cage_keys: Vec<String> = out
         .iter()
-        .filter(|k| k.starts_with("cage."))
-        .map(|k| format!("farm.{k}"))
+        .filter_map(|k| k.strip_prefix("cage."))
+        .flat_map(|k| [format!("farm.cage.{k}"), format!("farm.slot.{k}")])
         .collect();
     out.extend(cage_keys);
+    out.extend(
+        fields_of::<slots::SlotKeys>()
+            .into_iter()
+            .map(|k| format!("farm.slot.{k}")),
+    );
     // Keys split off before the mesh types see them.
-    for section in ["cage", "panel", "mesh", "farm.cage"] {
+    for section in ["cage", "panel", "mesh", "farm.cage", "farm.slot"] {
         out.extend(
             fields_of::<NetHydro>()
                 .into_iter()

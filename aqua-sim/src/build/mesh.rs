@@ -254,14 +254,27 @@ fn add_farm(
     }
     p.name = Some(name.clone());
     let at = format!("{}: line {}: [[farm]] #{}", m.file, c.line, i + 1);
+    let spec = &c.value;
     let farm = p
-        .build(&c.value.cage.params, seabed_z(scene))
+        .check_cage("cage", &spec.cage.params)
+        .and_then(|_| {
+            p.build_slots(
+                |r, col| spec.slot_cage(r, col).map(|s| s.params.clone()),
+                seabed_z(scene),
+            )
+        })
         .map_err(|e| SimError::at(at.clone(), e))?;
     for o in &farm.mesh.objects {
         m.name(&Some(o.name.clone()), "farm", i, c.line)?;
     }
-    for cage in &farm.cages {
-        m.nets.insert(cage.clone(), c.value.cage.net_hydro.clone());
+    // Each cage's own net keys (its slot's or [farm.cage]'s): the wake groups read them.
+    for r in 1..=p.rows as usize {
+        for col in 1..=p.columns as usize {
+            if let Some(s) = spec.slot_cage(r, col) {
+                m.nets
+                    .insert(format!("{name}/cage_r{r}c{col}"), s.net_hydro.clone());
+            }
+        }
     }
     let counts = farm.counts(&name);
     let buoys = farm.buoys.clone();
