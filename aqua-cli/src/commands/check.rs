@@ -51,15 +51,14 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     for f in &report.farms {
         let c = &f.counts;
         println!(
-            "[[farm]] {}: {} cages, {} plates with {} buoys, {} frame-line elements, {} bridles, \
-             {} anchor lines; cage-to-cage wake {}",
+            "[[farm]] {}: {}, {} with {}, {}, {}, {}; cage-to-cage wake {}",
             f.name,
-            c.cages,
-            c.plates,
-            c.buoys,
-            c.frame_elements,
-            c.bridles,
-            c.anchor_lines,
+            counted(c.cages, "cage"),
+            counted(c.plates, "plate"),
+            counted(c.buoys, "buoy"),
+            counted(c.frame_elements, "frame-line element"),
+            counted(c.bridles, "bridle"),
+            counted(c.anchor_lines, "anchor line"),
             if f.cage_wake { "on" } else { "off" }
         );
     }
@@ -89,4 +88,13 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         println!("{w}");
     }
     Ok(())
+}
+
+/// "1 cage", "2 cages".
+fn counted(n: usize, what: &str) -> String {
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
+    }
 }
