@@ -721,6 +721,8 @@ impl<'m> DynamicSolver<'m> {
                 self.st.t_end
             )));
         }
+        // Load data fixed within the step (wake membership) follows the accepted state.
+        crate::loads::accept_state(provider, self.state.t, &self.state.x)?;
         let dt_min = self.st.dt_min.unwrap_or(self.st.dt / 1024.0);
         let t = self.state.t;
         let mut retries = 0;

@@ -415,6 +415,7 @@ impl<'m> ExplicitSolver<'m> {
         }
         let model = self.model;
         let t = self.state.t;
+        crate::loads::accept_state(provider, t, &self.state.x)?;
         let mut h = self.dt;
         let mut target = self.st.t_end;
         if let Some(oi) = self.st.output_interval {

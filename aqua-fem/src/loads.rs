@@ -91,6 +91,15 @@ pub trait LoadProvider: Sync {
         let _ = (t, x, v);
         Ok(())
     }
+    /// Called with an accepted state: before each time step, and when a static solve has
+    /// converged. The place for load data that must stay fixed within one Newton solve
+    /// because it changes discontinuously with the geometry (which elements lie in a wake).
+    /// Returns true if the loads changed; a static solve is then repeated from its
+    /// equilibrium (docs/theory/fem.md#static-solver).
+    fn accept_state(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, LoadError> {
+        let _ = (t, x);
+        Ok(false)
+    }
     /// Fills `out` for element `e` with node positions `x` and velocities `v` (slices of the
     /// element's node count, in the order of `element_nodes`).
     fn element_load(
@@ -131,4 +140,18 @@ impl LoadProvider for NoLoads {
     ) -> Result<(), LoadError> {
         Ok(())
     }
+}
+
+/// [`LoadProvider::accept_state`] with its error as a [`FemError::Load`](crate::FemError).
+pub(crate) fn accept_state<P: LoadProvider + ?Sized>(
+    provider: &mut P,
+    t: f64,
+    x: &[[f64; 3]],
+) -> crate::Result<bool> {
+    provider
+        .accept_state(t, x)
+        .map_err(|e| crate::FemError::Load {
+            element: usize::MAX,
+            message: e.0,
+        })
 }

@@ -157,6 +157,10 @@ const MU_MAX: f64 = 1e6;
 const MU_RESTART: f64 = 1e-8;
 /// Backtracking halvings along a rejected step.
 const BACKTRACKS: usize = 8;
+/// Re-solves at full load when the loads' wake membership changed at the equilibrium
+/// (docs/theory/fem.md#static-solver).
+const MAX_WAKE_PASSES: usize = 5;
+
 /// A step is accepted when the merit falls by this fraction of the predicted decrease.
 const RHO_ACCEPT: f64 = 1e-4;
 
@@ -316,6 +320,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     let mut s_acc = 0.0;
     let mut ds = 1.0 / settings.load_steps as f64;
     let mut x_acc = ctx.x.clone();
+    let mut wake_passes = 0;
     loop {
         let s = if s_acc + ds > 1.0 - 1e-12 {
             1.0
@@ -332,7 +337,19 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                 x_acc.copy_from_slice(&ctx.x);
                 s_acc = s;
                 if s >= 1.0 {
-                    break;
+                    // Wake membership follows the equilibrium: re-solve while it changes.
+                    if !crate::loads::accept_state(&mut *ctx.prov, t, &ctx.x)? {
+                        break;
+                    }
+                    if wake_passes == MAX_WAKE_PASSES {
+                        report.warnings.push(format!(
+                            "the wake still changed after {MAX_WAKE_PASSES} re-solves at full \
+                             load; the equilibrium is that of the wake before the last change"
+                        ));
+                        break;
+                    }
+                    wake_passes += 1;
+                    continue;
                 }
                 if iters <= 10 {
                     ds = (2.0 * ds).min(1.0 - s_acc);

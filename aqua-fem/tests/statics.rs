@@ -479,3 +479,138 @@ fn discrete_catenary_to_round_off_for_any_axial_stiffness() {
         );
     }
 }
+
+/// A sideways push that switches with the accepted geometry, as a wake's membership does
+/// (docs/theory/fem.md#static-solver): F0 while the bob hangs at x ≤ x_s, F1 once an accepted
+/// state has it beyond. The provider changes it only in `accept_state`, never inside Newton.
+struct SwitchedPush {
+    node: [usize; 1],
+    threshold: f64,
+    forces: [f64; 2],
+    on: bool,
+    accepts: usize,
+}
+
+impl LoadProvider for SwitchedPush {
+    fn n_elements(&self) -> usize {
+        1
+    }
+    fn element_nodes(&self, _e: usize) -> &[usize] {
+        &self.node
+    }
+    fn accept_state(&mut self, _t: f64, x: &[[f64; 3]]) -> std::result::Result<bool, LoadError> {
+        self.accepts += 1;
+        let on = x[self.node[0]][0] > self.threshold;
+        let changed = on != self.on;
+        self.on = on;
+        Ok(changed)
+    }
+    fn element_load(
+        &self,
+        _e: usize,
+        _t: f64,
+        _x: &[[f64; 3]],
+        _v: &[[f64; 3]],
+        want: Want,
+        out: &mut ElementLoad,
+    ) -> std::result::Result<(), LoadError> {
+        out.force[0] = [self.forces[usize::from(self.on)], 0.0, 0.0];
+        out.has_dfdv = want.dfdv;
+        out.has_dfdx = want.dfdx;
+        Ok(())
+    }
+}
+
+/// A bob of weight W on an elastic rope (EA, L) pushed sideways by F hangs where the rope
+/// points along (F, −W): x = l·F/T with T = √(F² + W²), l = L·(1 + T/EA). With the push
+/// switching from F0 to F1 once the bob is beyond x_s = x(F0)/2, the static
+/// solver must end at the F1 equilibrium — one re-solve — not at the F0 one, and the load data
+/// must be consistent with where the bob ends.
+#[test]
+fn static_solve_follows_load_data_that_switch_with_the_equilibrium() {
+    let (l, ea, w) = (10.0, 1e6, 1000.0);
+    let (f0, f1) = (200.0, 600.0);
+    let mut b = ModelBuilder::new(Environment::default());
+    let g = b.add_group("rope", CableSection::new(ea, 1e-6)).unwrap();
+    let top = b.add_node([0.0, 0.0, 0.0]).unwrap();
+    let bob = b.add_node([0.0, 0.0, -l]).unwrap();
+    b.add_cable(top, bob, g, UnstretchedLength::Given(l))
+        .unwrap();
+    b.fix(top, Dofs::ALL).unwrap();
+    b.add_point_body(PointBody {
+        node: bob,
+        mass: w / DEFAULT_GRAVITY,
+        force: [0.0; 3],
+        seabed_stiffness: 0.0,
+    })
+    .unwrap();
+    let m = b.build().unwrap();
+    let hang = |f: f64| {
+        let t = (f * f + w * w).sqrt();
+        l * (1.0 + t / ea) * f / t
+    };
+    let (x0, x1) = (hang(f0), hang(f1));
+    let mut push = SwitchedPush {
+        node: [bob],
+        threshold: 0.5 * x0,
+        forces: [f0, f1],
+        on: false,
+        accepts: 0,
+    };
+    assert!(push.threshold > 0.0 && push.threshold < x0);
+    let sol = solve_static(&m, &mut push, &StaticSettings::default()).unwrap();
+    let x = sol.state.x[bob][0];
+    assert!(push.on, "the push never switched: x = {x}");
+    assert!(
+        (x - x1).abs() < 1e-6 * l,
+        "x = {x}, F1 equilibrium {x1}, F0 {x0}"
+    );
+    // Accepted twice: the F0 equilibrium (switch), then the F1 one (no change).
+    assert_eq!(push.accepts, 2);
+    assert!(sol.report.warnings.is_empty(), "{:?}", sol.report.warnings);
+}
+
+/// The integrators hand the accepted state to the loads once per step (not per Newton
+/// iteration or retry), so the switched push turns on during the swing once the bob has passed
+/// x_s — in HHT-α and the midpoint rule.
+#[test]
+fn integrators_hand_each_accepted_state_to_the_loads() {
+    let (l, w) = (10.0, 1000.0);
+    for midpoint in [false, true] {
+        let mut b = ModelBuilder::new(Environment::default());
+        let g = b.add_group("rope", CableSection::new(1e6, 1e-6)).unwrap();
+        let top = b.add_node([0.0, 0.0, 0.0]).unwrap();
+        let bob = b.add_node([0.0, 0.0, -l]).unwrap();
+        b.add_cable(top, bob, g, UnstretchedLength::Given(l))
+            .unwrap();
+        b.fix(top, Dofs::ALL).unwrap();
+        b.add_point_body(PointBody {
+            node: bob,
+            mass: w / DEFAULT_GRAVITY,
+            force: [0.0; 3],
+            seabed_stiffness: 0.0,
+        })
+        .unwrap();
+        let m = b.build().unwrap();
+        let mut push = SwitchedPush {
+            node: [bob],
+            threshold: 0.5,
+            forces: [200.0, 0.0],
+            on: false,
+            accepts: 0,
+        };
+        let mut s = DynamicSettings::new(0.05, 2.0);
+        s.midpoint = midpoint;
+        let mut solver = DynamicSolver::new(&m, s, None, &mut push).unwrap();
+        let mut switched_at = None;
+        while !solver.is_finished() {
+            solver.step(&mut push).unwrap();
+            if push.on && switched_at.is_none() {
+                switched_at = Some(solver.n_steps());
+            }
+        }
+        assert_eq!(push.accepts, solver.n_steps(), "midpoint {midpoint}");
+        // Pushed by 200 N from rest, the bob passes 0.5 m before the quarter swing.
+        assert!(switched_at.is_some(), "midpoint {midpoint}: never switched");
+    }
+}

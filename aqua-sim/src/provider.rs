@@ -59,6 +59,12 @@ impl LoadProvider for WaterLoads {
             .map_err(|e| LoadError(e.to_string()))
     }
 
+    fn accept_state(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, LoadError> {
+        self.assembly
+            .update_wake(t, x)
+            .map_err(|e| LoadError(e.to_string()))
+    }
+
     fn element_load(
         &self,
         e: usize,

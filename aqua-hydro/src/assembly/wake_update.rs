@@ -9,7 +9,8 @@ impl LoadAssembly {
     /// the start of each time step and after each accepted static load increment). Groups
     /// with `update = "frozen"` keep their first result; the cage-to-cage ratio
     /// ([`set_cage_wake`](Self::set_cage_wake)) is recomputed from `x` at every call. Returns
-    /// true if any element's membership in its own cage's shadow changed.
+    /// true if any element's membership in its own cage's shadow changed or a cage-to-cage
+    /// ratio moved by more than 1e-6.
     pub fn update_wake(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, HydroError> {
         self.check_len("positions", x.len())?;
         let mut changed = false;
@@ -77,7 +78,7 @@ impl LoadAssembly {
             }
             self.group_state[gi].computed = true;
         }
-        self.update_cage_wake(t, x);
+        changed |= self.update_cage_wake(t, x);
         self.wake_ready = true;
         Ok(changed)
     }
@@ -136,9 +137,10 @@ impl LoadAssembly {
 
     /// Recomputes the cage-to-cage ratio of every receiving element from positions `x`
     /// (never compounded: each call starts from the geometry alone).
-    fn update_cage_wake(&mut self, t: f64, x: &[[f64; 3]]) {
+    /// Recomputes the cage-to-cage ratios; true if any moved by more than 1e-6.
+    fn update_cage_wake(&mut self, t: f64, x: &[[f64; 3]]) -> bool {
         if self.cage_wake.is_empty() {
-            return;
+            return false;
         }
         let mut pts = Vec::new();
         let shadows: Vec<CageShadow> = self
@@ -158,6 +160,7 @@ impl LoadAssembly {
                 CageShadow::of_nodes(*s, &pts, [uc[0], uc[1]])
             })
             .collect();
+        let mut changed = false;
         for &(e, g) in &self.cage_receivers {
             let el = self.elems[e];
             let mut c = [0.0; 2];
@@ -165,7 +168,10 @@ impl LoadAssembly {
                 c[0] += x[nd][0] / el.n as f64;
                 c[1] += x[nd][1] / el.n as f64;
             }
-            self.cage_factor[e] = cage_ratio(&shadows, g, c);
+            let r = cage_ratio(&shadows, g, c);
+            changed |= (r - self.cage_factor[e]).abs() > 1e-6;
+            self.cage_factor[e] = r;
         }
+        changed
     }
 }
