@@ -1002,11 +1002,6 @@ fn load_element<P: LoadProvider + ?Sized>(
     Ok(())
 }
 
-#[inline]
-/// Discrete gradient of the contact energy E(z) = ½·k·max(z_s − z, 0)² between z0 and z1:
-/// the force f_z = −(E(z1) − E(z0))/(z1 − z0) [N] and 2·(−∂f_z/∂z1) [N/m], the midpoint rule's
-/// tangent; the limit k·max(z_s − z̄, 0) when the step barely moves
-/// (docs/theory/fem.md#energy-consistent-midpoint).
 /// The seabed damping's ramp s(δ) = min(1, δ/δ_c) for δ > 0 (0 otherwise) and ds/dδ
 /// (docs/theory/fem.md#seabed-contact).
 fn damping_ramp(d: f64, depth: f64) -> (f64, f64) {
@@ -1019,6 +1014,11 @@ fn damping_ramp(d: f64, depth: f64) -> (f64, f64) {
     }
 }
 
+#[inline]
+/// Discrete gradient of the contact energy E(z) = ½·k·max(z_s − z, 0)² between z0 and z1:
+/// the force f_z = −(E(z1) − E(z0))/(z1 − z0) [N] and 2·(−∂f_z/∂z1) [N/m], the midpoint rule's
+/// tangent; the limit k·max(z_s − z̄, 0) when the step barely moves
+/// (docs/theory/fem.md#energy-consistent-midpoint).
 fn bed_discrete_gradient(k: f64, zs: f64, z0: f64, z1: f64) -> (f64, f64) {
     if k == 0.0 {
         return (0.0, 0.0);
