@@ -521,15 +521,9 @@ impl LoadProvider for SwitchedPush {
     }
 }
 
-/// A bob of weight W on an elastic rope (EA, L) pushed sideways by F hangs where the rope
-/// points along (F, −W): x = l·F/T with T = √(F² + W²), l = L·(1 + T/EA). With the push
-/// switching from F0 to F1 once the bob is beyond x_s = x(F0)/2, the static
-/// solver must end at the F1 equilibrium — one re-solve — not at the F0 one, and the load data
-/// must be consistent with where the bob ends.
-#[test]
-fn static_solve_follows_load_data_that_switch_with_the_equilibrium() {
-    let (l, ea, w) = (10.0, 1e6, 1000.0);
-    let (f0, f1) = (200.0, 600.0);
+/// A bob of weight W [N] on an elastic rope (EA [N], L [m], nearly massless) hanging from a
+/// fixed point at the origin; returns the model and the bob's node.
+fn pendulum(l: f64, ea: f64, w: f64) -> (Model, usize) {
     let mut b = ModelBuilder::new(Environment::default());
     let g = b.add_group("rope", CableSection::new(ea, 1e-6)).unwrap();
     let top = b.add_node([0.0, 0.0, 0.0]).unwrap();
@@ -544,7 +538,19 @@ fn static_solve_follows_load_data_that_switch_with_the_equilibrium() {
         seabed_stiffness: 0.0,
     })
     .unwrap();
-    let m = b.build().unwrap();
+    (b.build().unwrap(), bob)
+}
+
+/// A bob of weight W on an elastic rope (EA, L) pushed sideways by F hangs where the rope
+/// points along (F, −W): x = l·F/T with T = √(F² + W²), l = L·(1 + T/EA). With the push
+/// switching from F0 to F1 once the bob is beyond x_s = x(F0)/2, the static
+/// solver must end at the F1 equilibrium — one re-solve — not at the F0 one, and the load data
+/// must be consistent with where the bob ends.
+#[test]
+fn static_solve_follows_load_data_that_switch_with_the_equilibrium() {
+    let (l, ea, w) = (10.0, 1e6, 1000.0);
+    let (f0, f1) = (200.0, 600.0);
+    let (m, bob) = pendulum(l, ea, w);
     let hang = |f: f64| {
         let t = (f * f + w * w).sqrt();
         l * (1.0 + t / ea) * f / t
@@ -577,21 +583,7 @@ fn static_solve_follows_load_data_that_switch_with_the_equilibrium() {
 fn integrators_hand_each_accepted_state_to_the_loads() {
     let (l, w) = (10.0, 1000.0);
     for midpoint in [false, true] {
-        let mut b = ModelBuilder::new(Environment::default());
-        let g = b.add_group("rope", CableSection::new(1e6, 1e-6)).unwrap();
-        let top = b.add_node([0.0, 0.0, 0.0]).unwrap();
-        let bob = b.add_node([0.0, 0.0, -l]).unwrap();
-        b.add_cable(top, bob, g, UnstretchedLength::Given(l))
-            .unwrap();
-        b.fix(top, Dofs::ALL).unwrap();
-        b.add_point_body(PointBody {
-            node: bob,
-            mass: w / DEFAULT_GRAVITY,
-            force: [0.0; 3],
-            seabed_stiffness: 0.0,
-        })
-        .unwrap();
-        let m = b.build().unwrap();
+        let (m, bob) = pendulum(l, 1e6, w);
         let mut push = SwitchedPush {
             node: [bob],
             threshold: 0.5,
