@@ -232,6 +232,29 @@ fn example(name: &str) -> String {
     .unwrap()
 }
 
+/// A collar held by a fixed top ring is not a float: the reference cage (top ring fixed, links
+/// pulled under by the net) has no floating pipe to check, the free-floating moored cage has
+/// its collar pipe.
+#[test]
+fn only_free_collars_are_floating_pipes() {
+    let floats = |name: &str| {
+        let scene = parse_scene(&example(name), Path::new(name)).unwrap();
+        let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+        let labels: Vec<String> = prep
+            .built
+            .design
+            .floaters
+            .iter()
+            .map(|f| f.label.clone())
+            .collect();
+        labels
+    };
+    let held = floats("reference-cage.toml");
+    assert!(held.is_empty(), "{held:?}");
+    let free = floats("moored-cage.toml");
+    assert!(free.iter().any(|l| l.contains("cage/top_ring")), "{free:?}");
+}
+
 /// The bundled moored cage floats; the same cage on the old example's heavy chains (50 kg/m,
 /// 95 m, 0.35 m collar pipe) sinks its collar, and the run says so. The balance, with the
 /// collar's net buoyancy about 74 kN: four chains hanging ≥ 40 m × 426 N/m each plus 28.8 kN of

@@ -62,14 +62,20 @@ pub(super) fn attach_buoys(
 }
 
 /// Line groups meant to float (docs/theory/farm.md#design-warnings): buoyant,
-/// ρ_w·π·d_v²/4 > μ, and built with every node within one d_v of the still-water level.
+/// ρ_w·π·d_v²/4 > μ, built with every node within one d_v of the still-water level, and with
+/// no node `held` (fixed in all three directions).
 pub(super) fn floating_pipes(
     mesh: &Mesh,
     sections: &[Option<(aqua_fem::GroupId, aqua_mesh::Section)>],
     water_density: f64,
+    held: &dyn Fn(usize) -> bool,
 ) -> Vec<Floater> {
     let mut out = Vec::new();
     for (gi, g) in mesh.groups.iter().enumerate() {
+        // A pipe held by a support (a fixed top ring and its links) is not meant to float.
+        if g.nodes.iter().any(|&n| held(n)) {
+            continue;
+        }
         let Some((_, s)) = sections.get(gi).and_then(|s| s.as_ref()) else {
             continue;
         };

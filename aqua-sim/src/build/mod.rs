@@ -152,10 +152,12 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
             }
         }
     }
+    let held = |n: usize| (0..3).all(|k| model.is_constrained(n, k));
     floaters.extend(buoys::floating_pipes(
         &mesh,
         &st.sections,
         model.environment().water_density,
+        &held,
     ));
     let design = DesignChecks {
         floaters,
