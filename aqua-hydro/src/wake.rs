@@ -68,7 +68,7 @@ impl FromStr for WakeModelId {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum WakeUpdate {
-    /// At the start of every time step / after every accepted load increment.
+    /// At the start of every time step and at the static equilibrium (re-solved while it changes).
     #[default]
     Step,
     /// Once, from the initial geometry.
