@@ -7,8 +7,9 @@ use crate::cage_wake::{CageShadow, cage_ratio};
 impl LoadAssembly {
     /// Recomputes shadow membership and wake factors from positions `x` at time t (called at
     /// the start of each time step and at each static equilibrium, through aqua-fem's
-    /// `accept_state`). Groups with `update = "frozen"` keep their first result; the cage-to-cage ratio
-    /// ([`set_cage_wake`](Self::set_cage_wake)) is recomputed from `x` at every call. Returns
+    /// `accept_state`). Groups with `update = "frozen"` keep their first result; the
+    /// cage-to-cage ratio ([`set_cage_wake`](Self::set_cage_wake)) is recomputed from `x` at
+    /// every call. Returns
     /// true if any element's membership in its own cage's shadow changed or a cage-to-cage
     /// ratio moved by more than 1e-6.
     pub fn update_wake(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, HydroError> {
