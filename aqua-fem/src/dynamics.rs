@@ -306,9 +306,40 @@ pub struct StepControl {
     pub sum_local_error: f64,
     /// Largest displacement of a free node from where the integration started [m].
     pub max_displacement: f64,
+    /// Peak element tension T_pk = max_e T_e after each accepted step, the start included [N]
+    /// (docs/theory/fem.md#time-step-error-indicator).
+    #[serde(skip)]
+    pub peak_tensions: Vec<f64>,
 }
 
 impl StepControl {
+    /// How well the time step resolves the extremes of the peak tension (0 error when it did
+    /// not vary); see [`TensionResolution`].
+    pub fn peak_tension_resolution(&self) -> TensionResolution {
+        let t = &self.peak_tensions;
+        let (lo, hi) = t
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+        let amplitude = 0.5 * (hi - lo);
+        if t.len() < 2 || amplitude <= 0.0 {
+            return TensionResolution::default();
+        }
+        // Steps from or into the top quarter of the range: where a sampled maximum is formed.
+        let top = hi - 0.5 * amplitude;
+        let jump = t
+            .windows(2)
+            .filter(|w| w[0] >= top || w[1] >= top)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f64::max);
+        // A sine's slope in its top quarter is at most cos 30° of its slope at the mean.
+        let r = jump / (amplitude * 0.75f64.sqrt());
+        TensionResolution {
+            jump,
+            range: [lo, hi],
+            error: r * r / 8.0 * amplitude / hi,
+        }
+    }
+
     /// The accumulated time-step error estimate relative to the largest displacement (0 when
     /// nothing moved).
     pub fn relative_time_error(&self) -> f64 {
@@ -318,6 +349,20 @@ impl StepControl {
             0.0
         }
     }
+}
+
+/// The time step's resolution of the peak tension (docs/theory/fem.md#time-step-error-indicator).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct TensionResolution {
+    /// Largest one-step change of the peak tension among the steps in the top quarter of its
+    /// range [N].
+    pub jump: f64,
+    /// Smallest and largest peak tension [N].
+    pub range: [f64; 2],
+    /// Estimated relative error of the largest tension, ε_T = r²/8 · A/T_max, with A the half
+    /// range and r = jump/(A·cos 30°) the phase step ωΔt of a sine of amplitude A whose slope
+    /// in its top quarter is at most cos 30° of its largest.
+    pub error: f64,
 }
 
 /// One halving.
@@ -647,6 +692,8 @@ impl<'m> DynamicSolver<'m> {
                 b
             }
         };
+        let peak = self.outputs.tension.iter().fold(0.0f64, |m, &t| m.max(t));
+        self.control.peak_tensions.push(peak);
         if !first {
             self.energies.external_work += b.external_work;
             self.energies.support_work += b.support_work;

@@ -695,3 +695,47 @@ fn chain_lands_on_a_damped_seabed_without_newton_failures() {
         );
     }
 }
+
+/// The peak-tension resolution estimate (docs/theory/fem.md#time-step-error-indicator) on a
+/// sampled sine T = m + A·sin(φ·n + φ0): at every phase step φ the estimate is of the order of
+/// the worst sampling error of the crest, A·(1 − cos(φ/2)), and it falls like φ².
+#[test]
+fn peak_tension_resolution_of_a_sampled_sine() {
+    let (m, a) = (1000.0, 400.0);
+    let mut last = f64::NAN;
+    for phi in [0.8, 0.4, 0.2, 0.1, 0.05] {
+        let mut control = StepControl::default();
+        control.peak_tensions = (0..4000)
+            .map(|n| m + a * (phi * n as f64 + 0.3).sin())
+            .collect();
+        let r = control.peak_tension_resolution();
+        let worst = a * (1.0 - (phi / 2.0).cos()) / (m + a);
+        assert!(
+            r.error > 0.8 * worst && r.error < 1.5 * worst,
+            "φ = {phi}: estimate {:.3e} against the worst crest error {worst:.3e}",
+            r.error
+        );
+        if last.is_finite() {
+            let ratio = last / r.error;
+            assert!((3.6..=4.4).contains(&ratio), "φ = {phi}: falls by {ratio}");
+        }
+        last = r.error;
+    }
+}
+
+/// A snap at the start from a slack state up to a third of the later peak does not count:
+/// maxima form in the top quarter of the range.
+#[test]
+fn a_start_up_snap_below_the_peaks_is_not_a_resolution_error() {
+    let mut control = StepControl::default();
+    control.peak_tensions = std::iter::once(0.0)
+        .chain((0..200).map(|n| 0.5 + 0.7 * n as f64 / 200.0))
+        .chain((0..2000).map(|n| 1.2 + 0.3 * (0.01 * n as f64).sin()))
+        .collect();
+    let r = control.peak_tension_resolution();
+    assert!(r.error < 1e-4, "{r:?}");
+    // The same snap into the top quarter is counted.
+    control.peak_tensions[0] = 0.0;
+    control.peak_tensions[1] = 1.5;
+    assert!(control.peak_tension_resolution().error > 0.1);
+}

@@ -71,6 +71,10 @@ pub struct FarmParams {
     pub element_length: Option<f64>,
     /// Unstretched length of each anchor line (chain + rope) [m], > 0.
     pub anchor_length: f64,
+    /// Segments of each anchor line (chain + rope together), ≥ 1 (default: `anchor_length`
+    /// over `element_length`). Sagging lines want about 40 or more
+    /// (docs/theory/fem.md#mesh-resolution-warnings).
+    pub anchor_segments: Option<u32>,
     /// Horizontal distance from the plate to its anchor [m] (default: the line's horizontal
     /// span when its chord is 97 % of `anchor_length`).
     pub anchor_distance: Option<f64>,
@@ -200,6 +204,14 @@ impl FarmParams {
         }
         if let Some(e) = self.element_length {
             positive(obj, "element_length", e)?;
+        }
+        if self.anchor_segments == Some(0) {
+            return Err(MeshError::param(
+                obj,
+                "anchor_segments",
+                "0".to_string(),
+                "must be at least 1",
+            ));
         }
         if let Some(o) = self.origin
             && !o.iter().all(|c| c.is_finite())
@@ -357,6 +369,9 @@ impl FarmParams {
                 (chord * chord - span * span).sqrt()
             }
         };
+        let anchor_el = self
+            .anchor_segments
+            .map_or(el, |n| self.anchor_length / f64::from(n));
         let mut parts = Vec::new();
         if let Some(ch) = &chain {
             parts.push(("chain", ch.clone(), chain_len));
@@ -371,7 +386,14 @@ impl FarmParams {
             let aname = format!("{name}/anchor_{tag}{k}");
             let plate = grid.plate_position(i, j);
             let a = plate + dir * distance;
-            let line = anchor_line(&aname, Point3::new(a.x, a.y, zb), plate, &parts, el, zb)?;
+            let line = anchor_line(
+                &aname,
+                Point3::new(a.x, a.y, zb),
+                plate,
+                &parts,
+                anchor_el,
+                zb,
+            )?;
             mesh.append(line);
             weld_tail(&mut mesh, &[plate_node(i, j)]);
             anchors.push(aname);
@@ -804,6 +826,7 @@ mod tests {
             spacing: 40.0,
             grid_depth: 5.0,
             anchor_length: 120.0,
+            anchor_segments: None,
             chain_length: Some(30.0),
             frame: section(0.05),
             bridle: section(0.04),
@@ -998,6 +1021,7 @@ mod tests {
         assert!(e.contains("grid_depth"), "{e}");
         let e = err(FarmParams {
             anchor_length: 20.0,
+            anchor_segments: None,
             chain_length: None,
             chain: None,
             ..farm(1, 1)

@@ -10,6 +10,10 @@
 //! - `design/float-on-seabed`: a buoy or floating pipe whose lowest point touches the seabed
 //!   at static equilibrium.
 //!
+//! - `mesh/coarse-line`: a `[[line]]` (or a farm's anchor line) that sags at static equilibrium
+//!   with fewer segments than the bundled chain's segment ladder needed
+//!   (docs/theory/fem.md#mesh-resolution-warnings).
+//!
 //! A floating pipe is a line group meant to float: buoyant (ρ_w·π·d_v²/4 > μ, d_v its volume
 //! diameter, μ its mass per length) and built with every node within one d_v of the still-water
 //! level (a collar ring). Buoys marked `submerged = true` are meant to be under water and only
@@ -44,6 +48,8 @@ pub struct LineLength {
     pub fairlead: usize,
     /// Sum of its elements' unstretched lengths [m].
     pub unstretched: f64,
+    /// Its nodes from anchor to fairlead (empty when its elements do not form one chain).
+    pub path: Vec<usize>,
 }
 
 /// What the design checks look at, gathered when the model is built.
@@ -55,6 +61,31 @@ pub struct DesignChecks {
     pub lines: Vec<LineLength>,
     /// Seabed level z = −depth [m] (`None`: infinite depth).
     pub seabed_z: Option<f64>,
+    /// Nodes with a point body (buoys, clump weights, point masses): physical kinks of a line.
+    pub kinks: Vec<usize>,
+}
+
+/// Largest turn between consecutive segments of a line at equilibrium [°] above which the line
+/// counts as sagging (docs/theory/fem.md#mesh-resolution-warnings).
+pub const SAG_TURN_DEG: f64 = 3.0;
+
+/// Fewest segments of a sagging line before `mesh/coarse-line` warns: on the bundled mooring
+/// chain's segment ladder the dynamic minimum tension was 17 / 8.3 / 2.2 / 0.6 % low at 10 / 20 /
+/// 40 / 80 segments (docs/theory/fem.md#mesh-resolution-warnings).
+pub const MIN_SAGGING_SEGMENTS: usize = 40;
+
+/// The largest angle [°] between consecutive segments along `path` at positions `x`, leaving
+/// out the nodes in `kinks` (point bodies: buoys and clump weights kink a line physically).
+pub fn largest_turn(path: &[usize], x: &[[f64; 3]], kinks: &[usize]) -> f64 {
+    let dir = |a: usize, b: usize| {
+        let (p, q) = (x[a], x[b]);
+        nalgebra::Vector3::new(q[0] - p[0], q[1] - p[1], q[2] - p[2])
+    };
+    path.windows(3)
+        .filter(|w| w.iter().all(|&n| n < x.len()) && !kinks.contains(&w[1]))
+        .map(|w| dir(w[0], w[1]).angle(&dir(w[1], w[2])).to_degrees())
+        .filter(|a| a.is_finite())
+        .fold(0.0, f64::max)
 }
 
 /// Relative margin by which a line must be short of its chord to be called taut (round-off of
@@ -74,7 +105,33 @@ impl DesignChecks {
         self.floaters
             .iter()
             .filter_map(|f| self.floater(f, x))
+            .chain(self.lines.iter().filter_map(|l| self.coarse_line(l, x)))
             .collect()
+    }
+
+    /// `mesh/coarse-line` for a line that sags (a turn of more than [`SAG_TURN_DEG`] between
+    /// segments away from point bodies) with fewer than [`MIN_SAGGING_SEGMENTS`] segments.
+    fn coarse_line(&self, l: &LineLength, x: &[[f64; 3]]) -> Option<Diagnostic> {
+        let segments = l.path.len().checked_sub(1)?;
+        if segments >= MIN_SAGGING_SEGMENTS {
+            return None;
+        }
+        let turn = largest_turn(&l.path, x, &self.kinks);
+        (turn > SAG_TURN_DEG).then(|| {
+            Diagnostic::warning(
+                "mesh/coarse-line",
+                &l.name,
+                format!(
+                    "line '{}' sags (its segments turn by up to {turn:.1}° at equilibrium) and \
+                     has {segments} segments: on the bundled mooring chain's segment ladder the \
+                     dynamic minimum tension was 8 % low at 20 segments and 2 % at 40 \
+                     (docs/theory/fem.md#mesh-resolution-warnings). Refine it to at least \
+                     {MIN_SAGGING_SEGMENTS} segments (`segments`, or a farm's \
+                     `element_length`), or compare with `aqua study --vary segments=...`",
+                    l.name
+                ),
+            )
+        })
     }
 
     fn taut_lines(&self, x: &[[f64; 3]], when: &str) -> Vec<Diagnostic> {
@@ -181,8 +238,10 @@ mod tests {
                 anchor: 0,
                 fairlead: 1,
                 unstretched: 10.0,
+                path: vec![0, 1],
             }],
             seabed_z: Some(-20.0),
+            kinks: Vec::new(),
         }
     }
 

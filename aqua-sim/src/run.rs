@@ -216,6 +216,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = energy_guard_warning(integrator, record) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = time_step_warning(record) {
+                    obs.diagnostic(&d);
+                }
                 r
             }
             Err(e) => Err(e),
@@ -295,6 +298,34 @@ impl<'p> Simulation<'p> {
         record.last = Some(row);
         Ok(())
     }
+}
+
+/// Estimated peak-tension error from the time step above which a run warns (1 %).
+pub const PEAK_TENSION_ERROR_WARNING: f64 = 0.01;
+
+/// A warning when the peak element tension changed so much within single steps that its
+/// extremes are under-resolved: the estimate of [`StepControl::peak_tension_resolution`] above
+/// 1 % (docs/theory/fem.md#time-step-error-indicator).
+fn time_step_warning(record: &RunRecord) -> Option<Diagnostic> {
+    let res = record.step_control.as_ref()?.peak_tension_resolution();
+    if res.error <= PEAK_TENSION_ERROR_WARNING {
+        return None;
+    }
+    Some(Diagnostic::warning(
+        "fem/time-step",
+        "dynamics",
+        format!(
+            "near its largest values the peak tension changed by up to {:.3} N within one step \
+             (range {:.3} … {:.3} N): \
+             tension extremes at this time step are uncertain by about {:.1} % \
+             (docs/theory/fem.md#time-step-error-indicator); halve `dt` or compare with \
+             `aqua study --vary dt=...`",
+            res.jump,
+            res.range[0],
+            res.range[1],
+            100.0 * res.error
+        ),
+    ))
 }
 
 /// A warning when HHT-α's energy guard rejected many steps: on slack-dominated nets at small

@@ -64,3 +64,49 @@ fn chain_end_reactions_match_the_elastic_catenary() {
         "element {te} vs reaction {fair}"
     );
 }
+
+/// `mesh/coarse-line` (docs/theory/fem.md#mesh-resolution-warnings): the chain at 20 segments
+/// sags and is warned about, with its largest turn near touchdown equal to the discrete
+/// catenary's atan(w·s/H) (H from the closed form above); at 40 segments it is not, and neither
+/// is a taut line of 4 segments.
+#[test]
+fn coarse_sagging_lines_are_warned_about_and_straight_ones_are_not() {
+    let dir = scratch("coarse-line");
+    let base =
+        example("mooring-chain.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
+    let warnings = |name: &str, text: &str| -> Vec<String> {
+        let out = run_text(&dir, name, text);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        json["diagnostics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| d.as_str().unwrap().to_string())
+            .filter(|d| d.contains("sags"))
+            .collect()
+    };
+    let coarse = warnings("n20", &base.replace("segments = 80", "segments = 20"));
+    assert_eq!(coarse.len(), 1, "{coarse:?}");
+    let turn: f64 = coarse[0]
+        .split("turn by up to ")
+        .nth(1)
+        .and_then(|s| s.split('°').next())
+        .and_then(|s| s.parse().ok())
+        .expect("the warning gives the turn");
+    let g = 9.80665;
+    let d = 0.1354f64;
+    let w = (113.0 - 1025.0 * std::f64::consts::FRAC_PI_4 * d * d) * g;
+    let (hh, _) = touchdown(100.0, 45.0, 120.0, w, 5.4e8);
+    let expected = (w * 6.0 / hh).atan().to_degrees();
+    assert!(
+        (turn / expected - 1.0).abs() < 0.1,
+        "largest turn {turn}° against atan(w·s/H) = {expected}°"
+    );
+    assert!(warnings("n40", &base.replace("segments = 80", "segments = 40")).is_empty());
+    // Taut: 4 segments, unstretched length = the chord (109.659 m); it sags only by its stretch.
+    let taut = base
+        .replace("segments = 80", "segments = 4")
+        .replace("length = 120.0", "length = 109.66");
+    assert!(warnings("taut", &taut).is_empty());
+}

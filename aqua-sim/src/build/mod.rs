@@ -23,7 +23,7 @@ use aqua_env::{BuildOptions, Sea, SeaSummary};
 use aqua_fem::{ExternalMotion, Model};
 use aqua_hydro::assembly::{Elements, PointElement};
 use aqua_hydro::{CageWake, PointProps};
-use aqua_mesh::{Mesh, ObjectKind};
+use aqua_mesh::{LineElement, Mesh, ObjectKind};
 use std::sync::Arc;
 
 /// Everything a run needs, built from a scene.
@@ -163,6 +163,12 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         floaters,
         lines: line_lengths(&mesh, &line_ends),
         seabed_z: model.environment().seabed.as_ref().map(|s| -s.depth),
+        kinks: model
+            .point_bodies()
+            .iter()
+            .map(|b| b.node)
+            .chain(buoy_nodes)
+            .collect(),
     };
     diagnostics.extend(design.as_built(&mesh.nodes));
     Ok(Built {
@@ -305,10 +311,10 @@ fn line_lengths(mesh: &Mesh, line_ends: &[LineEnds]) -> Vec<LineLength> {
         .iter()
         .filter_map(|le| {
             let oi = mesh.objects.iter().position(|o| o.name == le.name)? as u32;
-            let unstretched = mesh
-                .lines
+            let elements: Vec<&LineElement> =
+                mesh.lines.iter().filter(|l| l.object == oi).collect();
+            let unstretched = elements
                 .iter()
-                .filter(|l| l.object == oi)
                 .map(|l| l.rest_length)
                 .sum::<Option<f64>>()?;
             Some(LineLength {
@@ -316,9 +322,36 @@ fn line_lengths(mesh: &Mesh, line_ends: &[LineEnds]) -> Vec<LineLength> {
                 anchor: le.anchor,
                 fairlead: le.fairlead,
                 unstretched,
+                path: node_path(&elements, le.anchor, le.fairlead),
             })
         })
         .collect()
+}
+
+/// The nodes of a line from `anchor` to `fairlead` when its elements form one unbranched
+/// chain between them; empty otherwise.
+fn node_path(elements: &[&LineElement], anchor: usize, fairlead: usize) -> Vec<usize> {
+    let mut path = vec![anchor];
+    let mut used = vec![false; elements.len()];
+    while path.len() <= elements.len() {
+        let here = path[path.len() - 1];
+        let next = elements.iter().enumerate().find_map(|(i, e)| {
+            let other = match e.nodes {
+                [a, b] if a == here => b,
+                [a, b] if b == here => a,
+                _ => return None,
+            };
+            (!used[i]).then_some((i, other))
+        });
+        let Some((i, node)) = next else { break };
+        used[i] = true;
+        path.push(node);
+    }
+    if path.len() == elements.len() + 1 && path.last() == Some(&fairlead) {
+        path
+    } else {
+        Vec::new()
+    }
 }
 
 /// Anchor and fairlead nodes and end elements of every `[[line]]` object.
