@@ -1010,6 +1010,9 @@ fn regular_warnings(s: &RegularWaveSummary, kind: WaveKind, warnings: &mut Vec<S
     }
 }
 
+/// The JONSWAP γ where the DNV factor 1 − 0.287·ln γ reaches 0 (docs/theory/environment.md#wave-spectra).
+const MAX_GAMMA: f64 = 32.6;
+
 fn irregular_spec(
     sp: &SpectrumSpec,
     warnings: &mut Vec<String>,
@@ -1046,11 +1049,14 @@ fn irregular_spec(
                         ));
                     }
                     Some(GammaValue::Number(g)) => {
-                        if !(*g >= 1.0 && g.is_finite()) {
+                        if !(*g >= 1.0 && *g < MAX_GAMMA) {
                             return Err(EnvError::range(
                                 key("gamma"),
                                 g,
-                                "a number >= 1 (1 is Pierson-Moskowitz) or \"auto\"",
+                                format!(
+                                    "a number >= 1 (1 is Pierson-Moskowitz) and < {MAX_GAMMA:.2} \
+                                     (where the factor 1 − 0.287·ln γ stays > 0), or \"auto\""
+                                ),
                             ));
                         }
                         if *g > 7.0 {

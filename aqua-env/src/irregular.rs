@@ -106,6 +106,17 @@ fn invert(x: &[f64], c: &[f64], target: f64) -> f64 {
     }
 }
 
+/// The scene keys of a spectrum, for messages (`{ hs = 2, tp = 8, gamma = 3.3 }`).
+fn keys_of(sp: &Spectrum) -> String {
+    match sp {
+        Spectrum::PiersonMoskowitz { hs, tp } => format!("{{ hs = {hs}, tp = {tp} }}"),
+        Spectrum::Jonswap { hs, tp, gamma } => {
+            format!("{{ hs = {hs}, tp = {tp}, gamma = {gamma} }}")
+        }
+        Spectrum::Table { points } => format!("{{ table = ({} rows) }}", points.len()),
+    }
+}
+
 /// Builds the component set of an irregular sea.
 ///
 /// `z_ref` [m] is min(0, shallowest structure node): deeper structures see less of the high
@@ -143,11 +154,14 @@ pub fn discretise(
     let tail = sp.tail_energy();
     let tail_weighted = if z_ref < 0.0 { 0.0 } else { tail };
     let total_w = cum_w[GRID - 1] + tail_weighted;
-    if !(total_w > 0.0) {
+    if !(total_w > 0.0 && total_w.is_finite()) {
         return Err(EnvError::range(
             "sea.waves.spectrum",
-            "(no energy)",
-            "a spectrum with positive energy",
+            keys_of(sp),
+            format!(
+                "its energy is {}: a spectrum with finite, positive energy (hs in m, tp in s)",
+                if total_w > 0.0 { "not finite" } else { "zero" }
+            ),
         ));
     }
     let half = 0.5 * spec.energy_cutoff * total_w;

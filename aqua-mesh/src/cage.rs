@@ -249,13 +249,7 @@ impl CageParams {
                 });
             }
         }
-        let pos = |key: &str, v: f64| -> Result<f64> {
-            if v.is_finite() && v > 0.0 {
-                Ok(v)
-            } else {
-                Err(MeshError::param(obj, key, v, "must be a finite number > 0"))
-            }
-        };
+        let pos = |key: &str, v: f64| crate::limits::length(obj, key, v, "");
         let nonneg = |key: &str, v: f64, hint: &str| -> Result<f64> {
             if v.is_finite() && v >= 0.0 {
                 Ok(v)
@@ -271,6 +265,12 @@ impl CageParams {
         let square = kind == CageType::Ssm;
         let alt = if square { "side" } else { "diameter" };
         let alt_val = if square { self.side } else { self.diameter };
+        // The key the circumference comes from, for messages about what it limits.
+        let c_key = match (self.circumference, alt_val) {
+            (None, Some(a)) => format!("`{alt}` = {a} m"),
+            (Some(c), _) => format!("`circumference` = {c} m"),
+            (None, None) => "`circumference` = 120 m (default)".to_string(),
+        };
         let c = match (self.circumference, alt_val) {
             (Some(c), Some(a)) => {
                 return Err(MeshError::inconsistent(
@@ -286,7 +286,8 @@ impl CageParams {
             (None, None) => 120.0,
         };
         let depth = pos("depth", self.depth.unwrap_or(15.0))?;
-        let cone_depth = nonneg("cone_depth", self.cone_depth.unwrap_or(3.0), "")?;
+        let cone_depth =
+            crate::limits::length_or_zero(obj, "cone_depth", self.cone_depth.unwrap_or(3.0))?;
         let el = pos("element_length", self.element_length.unwrap_or(2.5))?;
         let bottom_ratio = self.bottom_ratio.unwrap_or(1.0);
         if !(bottom_ratio.is_finite() && bottom_ratio > 0.0 && bottom_ratio <= 1.0) {
@@ -314,7 +315,7 @@ impl CageParams {
                 obj,
                 "frame_offset",
                 f,
-                format!("must be > 0 and < {lim} m"),
+                format!("must be > 0 and < {lim} m (from {c_key})"),
             ));
         }
 
@@ -335,7 +336,7 @@ impl CageParams {
                     ),
                 ));
             }
-            (4 * ns, ns)
+            (ns.saturating_mul(4), ns)
         } else {
             let nt = (c / el).round() as usize;
             if nt < 3 {
@@ -471,13 +472,21 @@ impl CageParams {
             }
         }
 
-        let l = nn + bn;
+        let l = nn.saturating_add(bn);
         let n_f = match kind {
-            CageType::Ccs => nn + n_ext,
-            _ => nn + 1 + n_ext,
+            CageType::Ccs => nn.saturating_add(n_ext),
+            _ => nn.saturating_add(1).saturating_add(n_ext),
         };
-        let per_copy =
-            nt * l + 1 + nt * n_f + usize::from(kind == CageType::Ccs) + nt * (collar.pipes - 1);
+        // Saturating: a tiny element_length must give an error, not an overflow.
+        let per_copy = [
+            nt.saturating_mul(l),
+            1,
+            nt.saturating_mul(n_f),
+            usize::from(kind == CageType::Ccs),
+            nt.saturating_mul(collar.pipes - 1),
+        ]
+        .into_iter()
+        .fold(0usize, usize::saturating_add);
         let total = per_copy.saturating_mul(origins.len());
         if total > MAX_NODES {
             return Err(MeshError::param(
@@ -485,8 +494,9 @@ impl CageParams {
                 "element_length",
                 el,
                 format!(
-                    "gives {total} nodes (> {MAX_NODES}); likely a unit mistake (lengths are in \
-                     metres)"
+                    "gives {total} nodes (> {MAX_NODES}) for {c_key}, `depth` = {depth} m and \
+                     {} origin(s); likely a unit mistake (lengths are in metres)",
+                    origins.len()
                 ),
             ));
         }

@@ -73,7 +73,8 @@ impl CollarParams {
                 ))
             }
         };
-        let d = pos(
+        let len = |key: &str, v: f64| crate::limits::length(obj, &format!("collar.{key}"), v, "");
+        let d = len(
             "pipe_diameter",
             self.pipe_diameter.unwrap_or(DEFAULT_PIPE_DIAMETER),
         )?;
@@ -100,7 +101,7 @@ impl CollarParams {
                 d / s
             }
             (t, None) => {
-                let t = pos("wall_thickness", t.unwrap_or(DEFAULT_WALL_THICKNESS))?;
+                let t = len("wall_thickness", t.unwrap_or(DEFAULT_WALL_THICKNESS))?;
                 if 2.0 * t >= d {
                     return Err(MeshError::param(
                         obj,
@@ -130,7 +131,7 @@ impl CollarParams {
             ));
         }
         let (spacing, brackets) = if pipes == 2 {
-            let s = pos("pipe_spacing", self.pipe_spacing.unwrap_or(2.0 * d))?;
+            let s = len("pipe_spacing", self.pipe_spacing.unwrap_or(2.0 * d))?;
             if s <= d {
                 return Err(MeshError::param(
                     obj,
@@ -142,7 +143,7 @@ impl CollarParams {
                     ),
                 ));
             }
-            let b = pos(
+            let b = len(
                 "bracket_spacing",
                 self.bracket_spacing.unwrap_or(DEFAULT_BRACKET_SPACING),
             )?;

@@ -200,10 +200,10 @@ impl FarmParams {
             ("grid_depth", self.grid_depth),
             ("anchor_length", self.anchor_length),
         ] {
-            positive(obj, key, v)?;
+            length(obj, key, v)?;
         }
         if let Some(e) = self.element_length {
-            positive(obj, "element_length", e)?;
+            length(obj, "element_length", e)?;
         }
         if self.anchor_segments == Some(0) {
             return Err(MeshError::param(
@@ -213,6 +213,7 @@ impl FarmParams {
                 "must be at least 1",
             ));
         }
+        self.check_nodes(obj)?;
         if let Some(o) = self.origin
             && !o.iter().all(|c| c.is_finite())
         {
@@ -238,6 +239,53 @@ impl FarmParams {
             if c > 0.0 && self.chain.is_none() {
                 return Err(missing_table(obj, "chain", "chain_length > 0"));
             }
+        }
+        Ok(())
+    }
+
+    /// The frame lines, pendants, bridles and anchor lines must stay within
+    /// [`MAX_NODES`](crate::cage::MAX_NODES) (an upper estimate from the lengths given).
+    fn check_nodes(&self, obj: &str) -> Result<()> {
+        let el = self.element_length.unwrap_or(DEFAULT_ELEMENT_LENGTH);
+        let (nc, nr) = (f64::from(self.columns), f64::from(self.rows));
+        let frame = (nc * (nr + 1.0) + nr * (nc + 1.0) + 4.0 * nc * nr) * self.spacing;
+        let pendants = (nc + 1.0) * (nr + 1.0) * self.grid_depth;
+        let lines = 2.0 * (nc + nr + 2.0);
+        if let Some(n) = self.anchor_segments
+            && lines * f64::from(n) > crate::cage::MAX_NODES as f64
+        {
+            return Err(MeshError::param(
+                obj,
+                "anchor_segments",
+                n,
+                format!(
+                    "gives {} anchor-line nodes (> {}); sagging lines need about 40 segments",
+                    lines * f64::from(n),
+                    crate::cage::MAX_NODES
+                ),
+            ));
+        }
+        let anchors = if self.anchor_segments.is_some() {
+            0.0
+        } else {
+            lines * self.anchor_length
+        };
+        let nodes = (frame + pendants + anchors) / el;
+        if nodes > crate::cage::MAX_NODES as f64 {
+            return Err(MeshError::param(
+                obj,
+                "element_length",
+                el,
+                format!(
+                    "gives about {nodes:.3e} frame, pendant, bridle and anchor-line nodes (> {}) \
+                     for spacing = {} m, grid_depth = {} m and anchor_length = {} m; likely a \
+                     unit mistake (lengths are in metres)",
+                    crate::cage::MAX_NODES,
+                    self.spacing,
+                    self.grid_depth,
+                    self.anchor_length
+                ),
+            ));
         }
         Ok(())
     }
@@ -352,7 +400,7 @@ impl FarmParams {
         let mut anchors = Vec::new();
         let span = -self.grid_depth - zb;
         let distance = match self.anchor_distance {
-            Some(d) => positive(obj, "anchor_distance", d)?,
+            Some(d) => length(obj, "anchor_distance", d)?,
             None => {
                 let chord = ANCHOR_CHORD_FRACTION * self.anchor_length;
                 if chord <= span {
@@ -361,8 +409,10 @@ impl FarmParams {
                         "anchor_length",
                         self.anchor_length,
                         format!(
-                            "must exceed the height of the grid above the seabed, {span} m, by \
-                             more than 3 % (or give anchor_distance)"
+                            "must exceed the height of the grid above the seabed ([sea] depth \
+                             {} m − grid_depth {} m = {span} m) by more than 3 % (or give \
+                             anchor_distance)",
+                            -zb, self.grid_depth
                         ),
                     ));
                 }
@@ -436,6 +486,11 @@ fn positive(obj: &str, key: &str, v: f64) -> Result<f64> {
     }
 }
 
+/// A length of the farm [m]: > 0 and within [`crate::limits::MAX_LENGTH`].
+fn length(obj: &str, key: &str, v: f64) -> Result<f64> {
+    crate::limits::length(obj, key, v, "")
+}
+
 fn missing_table(obj: &str, key: &str, who: &str) -> MeshError {
     MeshError::param(
         obj,
@@ -492,7 +547,7 @@ fn line_section(
 fn check_buoy(obj: &str, b: &BuoyParams) -> Result<FarmBuoy> {
     let volume = positive(obj, "buoy.volume", b.volume)?;
     let height = match b.height {
-        Some(h) => positive(obj, "buoy.height", h)?,
+        Some(h) => length(obj, "buoy.height", h)?,
         None => volume.cbrt(),
     };
     for (k, v) in [

@@ -47,6 +47,7 @@ pub mod collar;
 pub mod error;
 pub mod farm;
 pub mod gmsh;
+pub mod limits;
 pub mod line;
 pub mod mesh;
 pub mod net;
@@ -60,6 +61,7 @@ pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
+pub use limits::MAX_LENGTH;
 pub use line::{Fairlead, LineParams, LineSegment, LineShape};
 pub use mesh::{
     CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,

@@ -440,9 +440,26 @@ impl LineParams {
         };
         let stretches = self.stretches(obj, &name)?;
         let l0: f64 = stretches.iter().map(|st| st.length).sum();
-        let n: usize = stretches.iter().map(|st| st.elements).sum();
+        let n = stretches
+            .iter()
+            .map(|st| st.elements)
+            .fold(0usize, usize::saturating_add);
         if n > crate::cage::MAX_NODES {
-            return Err(MeshError::param(obj, "segments", n, "must be <= 2000000"));
+            let key = if self.segment.is_empty() {
+                "segments"
+            } else {
+                "segment[*].elements"
+            };
+            return Err(MeshError::param(
+                obj,
+                key,
+                n,
+                format!(
+                    "gives {n} elements in all; at most {} (from the elements or \
+                     element_length of each part)",
+                    crate::cage::MAX_NODES
+                ),
+            ));
         }
         if let Some(zb) = seabed_z
             && anchor.z < zb - 1e-9
@@ -451,7 +468,11 @@ impl LineParams {
                 obj,
                 "anchor",
                 format!("{:?}", self.anchor),
-                format!("is below the seabed z = {zb} m; put the anchor on or above it"),
+                format!(
+                    "is below the seabed z = {zb} m ([sea] depth = {} m); put the anchor on or \
+                     above it",
+                    -zb
+                ),
             ));
         }
         if (fair - anchor).norm() == 0.0 {
@@ -548,16 +569,12 @@ impl LineParams {
     /// The stretches of uniform section: the one section of the line, or its segments.
     fn stretches(&self, obj: &str, name: &str) -> Result<Vec<Stretch>> {
         if self.segment.is_empty() {
-            let l0 = self.length;
-            if !(l0.is_finite() && l0 > 0.0) {
-                return Err(MeshError::param(
-                    obj,
-                    "length",
-                    l0,
-                    "must be a finite number > 0 (the unstretched length), or give \
-                     [[line.segment]] tables",
-                ));
-            }
+            let l0 = crate::limits::length(
+                obj,
+                "length",
+                self.length,
+                " (the unstretched length; or give [[line.segment]] tables)",
+            )?;
             let elements = element_count(
                 obj,
                 ("segments", "element_length"),
@@ -577,14 +594,12 @@ impl LineParams {
         for (k, seg) in self.segment.iter().enumerate() {
             let prefix = format!("segment[{k}].");
             let key = |x: &str| format!("{prefix}{x}");
-            if !(seg.length.is_finite() && seg.length > 0.0) {
-                return Err(MeshError::param(
-                    obj,
-                    &key("length"),
-                    seg.length,
-                    "must be a finite number > 0 (the segment's unstretched length)",
-                ));
-            }
+            crate::limits::length(
+                obj,
+                &key("length"),
+                seg.length,
+                " (the segment's unstretched length)",
+            )?;
             let elements = element_count(
                 obj,
                 (&key("elements"), &key("element_length")),

@@ -98,9 +98,7 @@ impl PanelParams {
         let name = self.name.clone().unwrap_or_else(|| "panel0".into());
         let obj = name.as_str();
         for (k, v) in [("width", self.width), ("height", self.height)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(MeshError::param(obj, k, v, "must be a finite number > 0"));
-            }
+            crate::limits::length(obj, k, v, "")?;
         }
         let (nw, nh) = match (self.divisions, self.element_length) {
             (Some(_), Some(_)) => {
@@ -134,7 +132,7 @@ impl PanelParams {
             }
             (None, None) => (10, 10),
         };
-        if (nw + 1) * (nh + 1) > crate::cage::MAX_NODES {
+        if (nw.saturating_add(1)).saturating_mul(nh.saturating_add(1)) > crate::cage::MAX_NODES {
             return Err(MeshError::param(
                 obj,
                 "divisions",

@@ -98,6 +98,18 @@ fn positive(key: &str, v: f64) -> Result<f64, String> {
     }
 }
 
+/// A length [m]: > 0 and at most aqua-mesh's [`aqua_mesh::MAX_LENGTH`].
+fn length(key: &str, v: f64) -> Result<f64, String> {
+    if v.is_finite() && v > 0.0 && v <= aqua_mesh::MAX_LENGTH {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{key} = {v}: must be a finite number > 0 and <= {} m (lengths are in metres)",
+            aqua_mesh::MAX_LENGTH
+        ))
+    }
+}
+
 fn non_negative(key: &str, v: f64) -> Result<f64, String> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
@@ -158,7 +170,7 @@ impl BuoySpec {
             (None, None) => Err(ZERO_VOLUME.into()),
             (Some(d), None) => match d {
                 0.0 => Err(format!("diameter = 0: {ZERO_VOLUME}")),
-                _ => Ok((Some(positive("diameter", d)?), None)),
+                _ => Ok((Some(length("diameter", d)?), None)),
             },
             (None, Some(v)) => match v {
                 0.0 => Err(format!("volume = 0: {ZERO_VOLUME}")),
@@ -202,7 +214,7 @@ impl BuoySpec {
 
     fn cylinder(&self) -> Result<(Option<PointProps>, f64), String> {
         let h = match self.height {
-            Some(h) => positive("height", h)?,
+            Some(h) => length("height", h)?,
             None => {
                 return Err(
                     "height is missing: a cylinder needs its height [m] (vertical axis)".into(),

@@ -296,7 +296,7 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         wave_components: ncomp,
         steps,
         output_steps: if dynamic {
-            (t_end / out_int).floor() as usize + 1
+            ((t_end / out_int).floor() as usize).saturating_add(1)
         } else {
             1
         },

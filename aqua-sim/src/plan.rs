@@ -169,6 +169,9 @@ fn alpha(scene: &Scene) -> Result<f64> {
     }
 }
 
+/// Most nominal steps a dynamic run may take (t_end / dt; more is likely a unit mistake).
+pub const MAX_STEPS: f64 = 1.0e9;
+
 /// The nominal step, output interval and end time, validated.
 fn timing(scene: &Scene) -> Result<(f64, f64, f64)> {
     let d = &scene.analysis.dynamic;
@@ -189,6 +192,14 @@ fn timing(scene: &Scene) -> Result<(f64, f64, f64)> {
         return Err(SimError::input(format!(
             "{file}: analysis.dynamic.dt = {dt}: a time step > 0 s and <= t_end ({} s)",
             d.t_end
+        )));
+    }
+    if d.t_end / dt > MAX_STEPS {
+        return Err(SimError::input(format!(
+            "{file}: analysis.dynamic.t_end = {} s with dt = {dt} s: {:.3e} steps; at most \
+             {MAX_STEPS:e} (times are in seconds)",
+            d.t_end,
+            d.t_end / dt
         )));
     }
     // 200 output steps over the run at most, by default.

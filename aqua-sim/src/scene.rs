@@ -757,21 +757,23 @@ impl Ctx<'_> {
     /// A `[[group]]`: its name, Morison keys and section overrides.
     fn group(&self, i: usize, line: usize, mut t: Table) -> Result<GroupSpec> {
         let name = match t.remove("name") {
-            Some(Value::String(n)) => n,
+            Some(Value::String(n)) => Some(n),
             Some(v) => {
                 return Err(self.err("group", i, line, format!("name = {v}: a group name string")));
             }
-            None => {
-                return Err(self.err(
-                    "group",
-                    i,
-                    line,
-                    "name is missing: the element group to set (e.g. \"ropes\")",
-                ));
-            }
+            None => None,
         };
+        // The other keys first: a misspelled `name` is reported as the unknown key it is.
         let hydro = self.typed("group", i, line, "", split_keys(&mut t, LINE_HYDRO_KEYS))?;
         let section = self.typed("group", i, line, "", t)?;
+        let name = name.ok_or_else(|| {
+            self.err(
+                "group",
+                i,
+                line,
+                "name is missing: the element group to set (e.g. \"ropes\")",
+            )
+        })?;
         Ok(GroupSpec {
             name,
             section,

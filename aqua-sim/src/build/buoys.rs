@@ -2,7 +2,7 @@
 //! is a point body of the structure (its mass, weight and seabed contact) and, when it has
 //! volume or drag, a point element of the water loads with its shape.
 
-use super::mesh::{default_name, group_names_hint, resolve_ref};
+use super::mesh::{default_name, ref_hint, resolve_ref};
 use crate::design::Floater;
 use crate::error::{Result, SimError};
 use crate::scene::Scene;
@@ -32,8 +32,8 @@ pub(super) fn attach_buoys(
         };
         let nodes = resolve_ref(mesh, &reference).ok_or_else(|| {
             SimError::input(format!(
-                "{at}: node = \"{reference}\" names no node; valid: {}",
-                group_names_hint(mesh)
+                "{at}: node = \"{reference}\" names no node; {}",
+                ref_hint(mesh, &reference)
             ))
         })?;
         for &n in &nodes {

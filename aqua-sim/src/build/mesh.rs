@@ -27,7 +27,25 @@ pub fn resolve_ref(mesh: &Mesh, reference: &str) -> Option<Vec<usize>> {
     mesh.resolve_nodes(reference)
 }
 
-pub(crate) fn group_names_hint(mesh: &Mesh) -> String {
+/// Why `reference` names nothing — an object part that no object's `name` has — and the
+/// valid references.
+pub(crate) fn ref_hint(mesh: &Mesh, reference: &str) -> String {
+    let hint = group_names_hint(mesh);
+    match reference.split_once('/') {
+        Some((object, _)) if !mesh.objects.iter().any(|o| o.name == object) => {
+            let mut objects: Vec<&str> = mesh.objects.iter().map(|o| o.name.as_str()).collect();
+            objects.sort_unstable();
+            format!(
+                "no object has name = \"{object}\" (objects, by their `name` key or the default \
+                 cage0, line0, …: {}); valid: {hint}",
+                objects.join(", ")
+            )
+        }
+        _ => format!("valid: {hint}"),
+    }
+}
+
+fn group_names_hint(mesh: &Mesh) -> String {
     let mut names: Vec<String> = mesh
         .groups
         .iter()
@@ -94,6 +112,19 @@ impl Merge {
         line: usize,
     ) -> Result<String> {
         let name = default_name(given, kind, i);
+        if name.is_empty() || name.contains(['/', '[', ']']) {
+            return Err(input(format!(
+                "{}: line {line}: [[{kind}]] #{}: name = \"{name}\": an object name must be \
+                 non-empty and without '/', '[' or ']' (nodes are named \"object/group[k]\")",
+                self.file,
+                i + 1
+            )));
+        }
+        self.claim(name, line)
+    }
+
+    /// Registers an object name (given or derived), unique in the scene.
+    fn claim(&mut self, name: String, line: usize) -> Result<String> {
         if let Some(prev) = self.names.insert(name.clone(), line) {
             return Err(input(format!(
                 "{}: line {line}: object name \"{name}\" is already used by the object at line {prev}; give each object a unique name",
@@ -242,16 +273,8 @@ fn add_farm(
     c: &crate::scene::Located<crate::scene::FarmSpec>,
 ) -> Result<BuiltFarm> {
     let mut p = c.value.params.clone();
+    // Checked as every object name: it prefixes the farm's objects ("farm/cage_r1c1").
     let name = m.name(&p.name, "farm", i, c.line)?;
-    if name.contains('/') || name.is_empty() {
-        return Err(input(format!(
-            "{}: line {}: [[farm]] #{}: name = \"{name}\": a non-empty name without '/' (it \
-             prefixes the farm's objects: \"{name}/cage_r1c1\")",
-            m.file,
-            c.line,
-            i + 1
-        )));
-    }
     p.name = Some(name.clone());
     let at = format!("{}: line {}: [[farm]] #{}", m.file, c.line, i + 1);
     let spec = &c.value;
@@ -265,7 +288,7 @@ fn add_farm(
         })
         .map_err(|e| SimError::at(at.clone(), e))?;
     for o in &farm.mesh.objects {
-        m.name(&Some(o.name.clone()), "farm", i, c.line)?;
+        m.claim(o.name.clone(), c.line)?;
     }
     // Each cage's own net keys (its slot's or [farm.cage]'s): the wake groups read them.
     for r in 1..=p.rows as usize {
@@ -312,10 +335,10 @@ fn add_line(
     if let Some(Fairlead::Node(r)) = &p.fairlead {
         let nodes = resolve_ref(&m.mesh, r).ok_or_else(|| {
             input(format!(
-                "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names no node; use \"object/group[k]\" with one of: {}",
+                "{file}: line {}: [[line]] #{}: fairlead = \"{r}\" names no node (use \"object/group[k]\"); {}",
                 c.line,
                 i + 1,
-                group_names_hint(&m.mesh)
+                ref_hint(&m.mesh, r)
             ))
         })?;
         if nodes.len() != 1 {

@@ -3,7 +3,7 @@
 //! builders' weights, `[[point]]` and `[[buoy]]`, fixed nodes from the builders' `fixed` groups and
 //! `[[fix]]`, and the `[[prescribed]]` motions (or externally driven ones for a coupling).
 
-use super::mesh::{group_names_hint, resolve_ref};
+use super::mesh::{ref_hint, resolve_ref};
 use crate::error::{Result, SimError};
 use crate::scene::{GroupSpec, Located, MotionKind, PrescribedSpec, Scene};
 use aqua_env::{Constants, Depth};
@@ -232,8 +232,8 @@ fn add_cables(
 fn node_group(mesh: &Mesh, at: &str, reference: &str) -> Result<Vec<usize>> {
     resolve_ref(mesh, reference).ok_or_else(|| {
         SimError::input(format!(
-            "{at}: nodes = \"{reference}\" names no node group; valid: {}",
-            group_names_hint(mesh)
+            "{at}: nodes = \"{reference}\" names no node group; {}",
+            ref_hint(mesh, reference)
         ))
     })
 }
