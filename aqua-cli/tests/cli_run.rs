@@ -584,7 +584,14 @@ fn paraview_script_opens_the_series_in_real_paraview() {
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
     assert_eq!(r["times"], serde_json::json!([0.0, 0.5, 1.0]));
-    assert_eq!(r["points"].as_u64(), Some(273), "{r}");
+    // The cage's 153 nodes and, per line, one node per segment (its fairlead is a collar node).
+    let scene = std::fs::read_to_string(root().join("examples/moored-cage.toml")).unwrap();
+    let line_nodes: u64 = scene
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("segments = "))
+        .map(|n| n.trim().parse::<u64>().unwrap())
+        .sum();
+    assert_eq!(r["points"].as_u64(), Some(153 + line_nodes), "{r}");
     let range = r["tension_range"].as_array().unwrap();
     assert_eq!(range[0].as_f64(), Some(0.0), "no negative tension: {r}");
     assert!(range[1].as_f64().unwrap() > 1e3, "{r}");

@@ -82,13 +82,34 @@ pub(crate) fn invalid(what: impl Into<String>, value: f64, valid: impl Into<Stri
     }
 }
 
+/// The last values of a residual history (‖r‖/F_ref per iteration), 3 digits each: a failure
+/// message stays a few lines long however many iterations ran.
+fn brief(history: &[f64]) -> String {
+    const SHOWN: usize = 8;
+    let tail: Vec<String> = history
+        .iter()
+        .skip(history.len().saturating_sub(SHOWN))
+        .map(|r| format!("{r:.3e}"))
+        .collect();
+    if history.len() > SHOWN {
+        format!(
+            "(last {SHOWN} of {} iterations) [..., {}]",
+            history.len(),
+            tail.join(", ")
+        )
+    } else {
+        format!("[{}]", tail.join(", "))
+    }
+}
+
 /// Details of a static solver failure.
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error(
     "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
          {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
-         residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {history:?}. \
-         Hints: check supports and slack parts, use more `load_steps` or `max_iter`"
+         residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {}. \
+         Hints: check supports and slack parts, use more `load_steps` or `max_iter`",
+    brief(.history)
 )]
 pub struct StaticFailure {
     /// Load factor that could not be reached.
@@ -118,8 +139,9 @@ pub struct StaticFailure {
          {reason}; worst node {worst_node} at {worst_position:?} with residual \
          {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
          {max_strain:.4e}), most compressed element {min_strain_element} (strain \
-         {min_strain:.4e}); residual history {history:?}. Hints: smaller dt, larger alpha, \
-         check supports and slack parts"
+         {min_strain:.4e}); residual history {}. Hints: smaller dt, larger alpha, \
+         check supports and slack parts",
+    brief(.history)
 )]
 pub struct StepFailure {
     /// Time of the last converged state [s].
