@@ -704,10 +704,12 @@ fn peak_tension_resolution_of_a_sampled_sine() {
     let (m, a) = (1000.0, 400.0);
     let mut last = f64::NAN;
     for phi in [0.8, 0.4, 0.2, 0.1, 0.05] {
-        let mut control = StepControl::default();
-        control.peak_tensions = (0..4000)
-            .map(|n| m + a * (phi * n as f64 + 0.3).sin())
-            .collect();
+        let control = StepControl {
+            peak_tensions: (0..4000)
+                .map(|n| m + a * (phi * n as f64 + 0.3).sin())
+                .collect(),
+            ..Default::default()
+        };
         let r = control.peak_tension_resolution();
         let worst = a * (1.0 - (phi / 2.0).cos()) / (m + a);
         assert!(
@@ -727,11 +729,13 @@ fn peak_tension_resolution_of_a_sampled_sine() {
 /// maxima form in the top quarter of the range.
 #[test]
 fn a_start_up_snap_below_the_peaks_is_not_a_resolution_error() {
-    let mut control = StepControl::default();
-    control.peak_tensions = std::iter::once(0.0)
-        .chain((0..200).map(|n| 0.5 + 0.7 * n as f64 / 200.0))
-        .chain((0..2000).map(|n| 1.2 + 0.3 * (0.01 * n as f64).sin()))
-        .collect();
+    let mut control = StepControl {
+        peak_tensions: std::iter::once(0.0)
+            .chain((0..200).map(|n| 0.5 + 0.7 * n as f64 / 200.0))
+            .chain((0..2000).map(|n| 1.2 + 0.3 * (0.01 * n as f64).sin()))
+            .collect(),
+        ..Default::default()
+    };
     let r = control.peak_tension_resolution();
     assert!(r.error < 1e-4, "{r:?}");
     // The same snap into the top quarter is counted.
