@@ -16,6 +16,8 @@ pub(crate) struct CableEval {
     pub length: f64,
     /// Switch s (1 taut, r_c slack).
     pub switch: f64,
+    /// The damping part of T [N]: T − s·EA·ε (dissipative: its power is ≥ 0).
+    pub damping_force: f64,
     /// Internal force on node b (= −force on node a) [N]: T·e.
     pub force_b: [f64; 3],
     /// ∂(force_b)/∂x_b [N/m], row-major.
@@ -26,6 +28,33 @@ pub(crate) struct CableEval {
     pub bad: bool,
     /// Unit vector from node a to node b.
     pub force_b_dir: [f64; 3],
+}
+
+/// Strain over which the damping of a tension-only element ramps in from r_c·c_a to c_a
+/// (docs/theory/fem.md#slack-members).
+pub const DAMPING_RAMP_STRAIN: f64 = 1e-5;
+
+/// The axial force T [N] and its derivatives ∂T/∂ε [N] and ∂T/∂ε̇ [N·s] of an element with
+/// compression ratio r_c, stiffness EA [N] and damping c_a [N·s] at strain ε and strain rate ε̇
+/// (docs/theory/fem.md#slack-members). Slack (ε ≤ 0): T = r_c·(EA·ε + c_a·ε̇). Taut:
+///
+/// ```text
+/// T = EA·ε + d(ε)·c_a·ε̇,   d(ε) = r_c + (1 − r_c)·min(1, ε/ε_d)
+/// ```
+///
+/// with ε_d = [`DAMPING_RAMP_STRAIN`], so T is continuous through ε = 0 while stretching (it
+/// jumped by (1 − r_c)·c_a·ε̇ before). Members with r_c ≥ 1 (bars) are plain Kelvin–Voigt.
+#[inline]
+pub(crate) fn axial_force(rc: f64, ea: f64, ca: f64, eps: f64, eps_dot: f64) -> (f64, f64, f64) {
+    if rc >= 1.0 || eps >= DAMPING_RAMP_STRAIN {
+        return (ea * eps + ca * eps_dot, ea, ca);
+    }
+    if eps <= 0.0 {
+        return (rc * (ea * eps + ca * eps_dot), rc * ea, rc * ca);
+    }
+    let d = rc + (1.0 - rc) * eps / DAMPING_RAMP_STRAIN;
+    let dd = (1.0 - rc) / DAMPING_RAMP_STRAIN;
+    (ea * eps + d * ca * eps_dot, ea + dd * ca * eps_dot, d * ca)
 }
 
 /// Evaluates element `e` with node positions/velocities. `damping` enables axial damping
@@ -68,15 +97,15 @@ pub(crate) fn evaluate(
     } else {
         (0.0, [0.0; 3])
     };
-    let t = s * (e.ea * eps + ca * eps_dot);
-    let km = s * e.ea / e.l0;
+    let (t, dt_deps, dt_deps_dot) = axial_force(e.rc, e.ea, ca, eps, eps_dot);
+    let km = dt_deps / e.l0;
     let kg = if clamp_geometric && s < 1.0 {
         t.max(0.0) / l
     } else {
         t / l
     };
-    let cm = s * ca / e.l0;
-    let kd = s * ca / (e.l0 * l);
+    let cm = dt_deps_dot / e.l0;
+    let kd = dt_deps_dot / (e.l0 * l);
     for i in 0..3 {
         for j in 0..3 {
             let p = if i == j { 1.0 } else { 0.0 } - u[i] * u[j];
@@ -88,6 +117,7 @@ pub(crate) fn evaluate(
     out.strain = eps;
     out.strain_rate = eps_dot;
     out.switch = s;
+    out.damping_force = t - s * e.ea * eps;
     out.force_b = [t * u[0], t * u[1], t * u[2]];
     out.bad = !t.is_finite();
     out
@@ -248,5 +278,48 @@ mod tests {
             )
             .bad
         );
+    }
+
+    /// The ramped damping of a tension-only element (r_c = 0): continuous through ε = 0 while
+    /// stretching (it jumped by c_a·ε̇ before), half the damping force halfway up the ramp, full
+    /// Kelvin–Voigt beyond it, and the tangent inside the ramp the derivative of the force
+    /// (central differences).
+    #[test]
+    fn axial_damping_ramps_in_continuously_with_its_tangent() {
+        let e = Cable {
+            rc: 0.0,
+            ..cable(40.0)
+        };
+        let (xa, va, vb) = ([0.0; 3], [0.0; 3], [0.3, 0.1, 0.0]);
+        let force = |l: f64| evaluate(&e, xa, [l, 0.0, 0.0], va, vb, true, 0.0, false).tension;
+        let ca_edot = 40.0 * 0.3 / 1.3;
+        assert!(force(1.3 * (1.0 + 1e-14)).abs() < 1e-6 * ca_edot);
+        let beyond = 1.3 * (1.0 + 2.0 * DAMPING_RAMP_STRAIN);
+        let full = 2e4 * 2.0 * DAMPING_RAMP_STRAIN + ca_edot;
+        assert!((force(beyond) - full).abs() < 1e-9 * full);
+        let half = 1.3 * (1.0 + 0.5 * DAMPING_RAMP_STRAIN);
+        let expected = 2e4 * 0.5 * DAMPING_RAMP_STRAIN + 0.5 * ca_edot;
+        assert!((force(half) - expected).abs() < 1e-6 * expected);
+        let n = (1.0f64 + 0.02 * 0.02 + 0.01 * 0.01).sqrt();
+        let xb = [half / n, 0.02 * half / n, -0.01 * half / n];
+        let ev = evaluate(&e, xa, xb, va, vb, true, 0.0, false);
+        assert!((ev.strain / DAMPING_RAMP_STRAIN - 0.5).abs() < 1e-6);
+        assert!(ev.damping_force * ev.strain_rate >= 0.0);
+        let h = 1e-10;
+        for j in 0..3 {
+            let (mut xp, mut xm) = (xb, xb);
+            xp[j] += h;
+            xm[j] -= h;
+            let fp = evaluate(&e, xa, xp, va, vb, true, 0.0, false).force_b;
+            let fm = evaluate(&e, xa, xm, va, vb, true, 0.0, false).force_b;
+            for i in 0..3 {
+                let kfd = (fp[i] - fm[i]) / (2.0 * h);
+                assert!(
+                    (kfd - ev.k[i][j]).abs() < 1e-3 * (1.0 + ev.k[i][j].abs()),
+                    "k[{i}][{j}] fd {kfd} vs {}",
+                    ev.k[i][j]
+                );
+            }
+        }
     }
 }

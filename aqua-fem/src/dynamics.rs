@@ -641,8 +641,7 @@ impl<'m> DynamicSolver<'m> {
         }
         // Dissipated power: axial/Rayleigh-K damping and Rayleigh-M.
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
-            let ca = e.ca + self.st.rayleigh[1] * e.ea;
-            b.power += c.switch * ca * c.strain_rate * c.strain_rate * e.l0;
+            b.power += c.damping_force * c.strain_rate * e.l0;
         }
         if self.st.rayleigh[0] > 0.0 {
             let mut ms = 0.0;

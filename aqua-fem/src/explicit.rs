@@ -380,7 +380,7 @@ impl<'m> ExplicitSolver<'m> {
         let u = self.outputs.strain_energy(model) + self.sys.bending_energy();
         let mut power = 0.0;
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
-            power += c.switch * e.ca * c.strain_rate * c.strain_rate * e.l0;
+            power += c.damping_force * c.strain_rate * e.l0;
         }
         if !first {
             for i in 0..n {

@@ -25,8 +25,7 @@ const V_C: f64 = 0.01;
 const AXIAL_DAMPING: f64 = 0.05;
 /// Axial damping ratio of the towed chain: lets the axial ringing of the start die out (the
 /// midpoint rule has no numerical damping); at steady sliding the strain rate, and so its
-/// force, is 0. (Not for chains that come to rest at zero strain: the damping force of a
-/// tension-only element switches off at ε = 0, a jump that Newton cannot settle on.)
+/// force, is 0.
 const TOW_DAMPING: f64 = 0.5;
 
 fn environment(friction: SeabedFriction) -> Environment {
