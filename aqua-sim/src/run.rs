@@ -13,7 +13,7 @@ use crate::provider::WaterLoads;
 use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium};
 use aqua_env::Phase;
-use aqua_fem::{Outputs, State, StaticControl, StaticProgress, StepControl, StepReport};
+use aqua_fem::{Energies, Outputs, State, StaticControl, StaticProgress, StepControl, StepReport};
 use aqua_hydro::assembly::LoadAssembly;
 use std::time::Instant;
 
@@ -63,6 +63,16 @@ pub struct RunRecord {
     pub last: Option<SummaryRow>,
     /// Step halvings and regrowths of the dynamic phase (HHT-α).
     pub step_control: Option<StepControl>,
+    /// The energy ledger at the end of the dynamic phase (implicit schemes).
+    pub energies: Option<Energies>,
+}
+
+impl RunRecord {
+    /// Keeps the integrator's step control and energy ledger.
+    fn keep_ledgers(&mut self, solver: &dyn Stepper) {
+        self.step_control = solver.step_control();
+        self.energies = solver.energies();
+    }
 }
 
 /// One output step.
@@ -242,11 +252,11 @@ impl<'p> Simulation<'p> {
         while !solver.is_finished() {
             if obs.stop_requested() {
                 record.ending = Ending::Interrupted;
-                record.step_control = solver.step_control();
+                record.keep_ledgers(solver);
                 return Ok(());
             }
             let report = solver.step(&mut self.loads).map_err(|e| {
-                record.step_control = solver.step_control();
+                record.keep_ledgers(solver);
                 SimError::Dynamic(Box::new(e))
             })?;
             record.steps += 1;
@@ -263,7 +273,7 @@ impl<'p> Simulation<'p> {
                 )?;
             }
         }
-        record.step_control = solver.step_control();
+        record.keep_ledgers(solver);
         Ok(())
     }
 

@@ -6,7 +6,7 @@ use crate::error::{Result, SimError};
 use crate::plan::Integrator;
 use crate::provider::WaterLoads;
 use aqua_fem::{
-    DynamicSolver, ExplicitSolver, Model, Outputs, State, StaticControl, StaticProgress,
+    DynamicSolver, Energies, ExplicitSolver, Model, Outputs, State, StaticControl, StaticProgress,
     StaticSettings, StaticSolution, StepControl, StepReport, solve_static_observed,
 };
 
@@ -39,6 +39,10 @@ pub trait Stepper {
     fn step_control(&self) -> Option<StepControl> {
         None
     }
+    /// The energy ledger (HHT-α and the midpoint rule).
+    fn energies(&self) -> Option<Energies> {
+        None
+    }
 }
 
 impl Stepper for DynamicSolver<'_> {
@@ -59,6 +63,9 @@ impl Stepper for DynamicSolver<'_> {
     }
     fn step_control(&self) -> Option<StepControl> {
         Some(DynamicSolver::step_control(self).clone())
+    }
+    fn energies(&self) -> Option<Energies> {
+        Some(DynamicSolver::energies(self))
     }
 }
 
