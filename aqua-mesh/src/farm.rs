@@ -27,7 +27,7 @@
 use crate::Mesh;
 use crate::cage::CageParams;
 use crate::error::{MeshError, Result};
-use crate::line::catenary_nodes;
+use crate::line::{catenary_nodes, touchdown_points};
 use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -779,7 +779,9 @@ pub fn anchor_line(
     let total: f64 = parts.iter().map(|p| p.2).sum();
     let counts: Vec<usize> = parts.iter().map(|p| segments(p.2, el)).collect();
     let n: usize = counts.iter().sum();
-    let mut pts = catenary_nodes(anchor, fairlead, total, n)
+    let arc: Vec<f64> = (0..=n).map(|i| total * i as f64 / n as f64).collect();
+    let mut pts = touchdown_points(anchor, fairlead, total, &arc, zb)
+        .or_else(|| catenary_nodes(anchor, fairlead, total, n))
         .ok_or_else(|| MeshError::inconsistent(name, "anchor and fairlead coincide"))?;
     for p in pts.iter_mut() {
         p.z = p.z.max(zb);

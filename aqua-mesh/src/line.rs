@@ -322,6 +322,75 @@ fn finite3(obj: &str, key: &str, v: [f64; 3]) -> Result<Point3<f64>> {
     }
 }
 
+/// Positions at arc lengths `arc` from `a` of an inextensible line of length `l0` from an anchor
+/// `a` on the seabed z = `zb` to a fairlead `b` above it, lying on the seabed from `a` and
+/// rising from the touchdown point as the catenary whose vertex is there:
+///
+/// ```text
+/// s_s = √(h² + 2·h·c),  x_s = c·asinh(s_s/c),  l = (l0 − s_s) + x_s
+/// ```
+///
+/// (c = H/w the catenary parameter, h the fairlead's height above the seabed, l the horizontal
+/// span, s_s and x_s the suspended arc and span), solved for c by bisection. `None` when the
+/// anchor is not on the seabed, the line cannot reach (l0 ≥ l + h: it would pile up) or the line
+/// does not touch down (s_s > l0): then the free catenary applies
+/// (docs/theory/cages.md#single-line).
+pub fn touchdown_points(
+    a: Point3<f64>,
+    b: Point3<f64>,
+    l0: f64,
+    arc: &[f64],
+    zb: f64,
+) -> Option<Vec<Point3<f64>>> {
+    let d = b - a;
+    let horiz = Vector3::new(d.x, d.y, 0.0);
+    let l = horiz.norm();
+    let h = b.z - zb;
+    if (a.z - zb).abs() > 1e-6 * (1.0 + l0) || h <= 0.0 || l <= 0.0 || l0 >= l + h {
+        return None;
+    }
+    let suspended = |c: f64| (h * h + 2.0 * h * c).sqrt();
+    let span = |c: f64| l0 - suspended(c) + c * (suspended(c) / c).asinh() - l;
+    let (mut lo, mut hi) = (1e-9 * (l + h), 1e3 * (l + h));
+    if !(span(lo) < 0.0 && span(hi) > 0.0) {
+        return None;
+    }
+    for _ in 0..200 {
+        let mid = (lo * hi).sqrt();
+        if span(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-14 * hi {
+            break;
+        }
+    }
+    let c = 0.5 * (lo + hi);
+    let laid = l0 - suspended(c);
+    if laid < 0.0 {
+        return None;
+    }
+    let ex = horiz / l;
+    let ground = Point3::new(a.x, a.y, zb);
+    Some(
+        arc.iter()
+            .map(|&s| {
+                if s >= l0 {
+                    b
+                } else if s <= laid {
+                    ground + ex * s
+                } else {
+                    let sigma = (s - laid) / c;
+                    let x = laid + c * sigma.asinh();
+                    let z = c * ((1.0 + sigma * sigma).sqrt() - 1.0);
+                    ground + ex * x + Vector3::new(0.0, 0.0, z)
+                }
+            })
+            .collect(),
+    )
+}
+
 /// Positions of N+1 nodes of an inextensible line of length `l0` hanging between `a` and `b`
 /// (catenary in the vertical plane through both ends; straight when slack is impossible or the
 /// chord is vertical), at arc lengths i·l0/N. Returns `None` if `a == b`.
@@ -492,7 +561,10 @@ impl LineParams {
                 .iter()
                 .map(|&s| anchor + (fair - anchor) * (s / l0))
                 .collect(),
-            LineShape::Catenary => catenary_points(anchor, fair, l0, &arc).unwrap_or_default(),
+            LineShape::Catenary => seabed_z
+                .and_then(|zb| touchdown_points(anchor, fair, l0, &arc, zb))
+                .or_else(|| catenary_points(anchor, fair, l0, &arc))
+                .unwrap_or_default(),
         };
         if let Some(p) = pts.last_mut() {
             *p = fair;
@@ -685,6 +757,35 @@ mod tests {
             mass_per_length: Some(100.0),
             ..Default::default()
         }
+    }
+
+    #[test]
+    fn touchdown_catenary_lies_on_the_bed_has_its_length_and_meets_the_bed_tangentially() {
+        let (a, b, zb) = (
+            Point3::new(0.0, 0.0, -50.0),
+            Point3::new(100.0, 0.0, -5.0),
+            -50.0,
+        );
+        let n = 4000;
+        let arc: Vec<f64> = (0..=n).map(|i| 120.0 * i as f64 / n as f64).collect();
+        let p = touchdown_points(a, b, 120.0, &arc, zb).expect("it touches down");
+        assert_eq!(p[0], a);
+        assert_eq!(p[n], b);
+        // Consecutive points are one arc step apart (to the chord's second-order deficit).
+        let step = 120.0 / n as f64;
+        for w in p.windows(2) {
+            let d = (w[1] - w[0]).norm();
+            assert!(d <= step * (1.0 + 1e-12) && d > step * (1.0 - 1e-4), "{d}");
+            assert!(w[1].z >= zb - 1e-12);
+        }
+        // A laid part, then a rise whose first slope is zero (tangent at touchdown).
+        let laid = p.iter().filter(|q| q.z == zb).count();
+        assert!(laid > 100 && laid < n);
+        let rise = (p[laid + 1].z - p[laid].z) / (p[laid + 1].x - p[laid].x);
+        assert!(rise.abs() < 0.01, "{rise}");
+        // A short line hangs free of the bed; a line longer than span + height piles up.
+        assert!(touchdown_points(a, b, 110.0, &arc, zb).is_none());
+        assert!(touchdown_points(a, b, 146.0, &arc, zb).is_none());
     }
 
     #[test]

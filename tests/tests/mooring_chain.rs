@@ -110,3 +110,41 @@ fn coarse_sagging_lines_are_warned_about_and_straight_ones_are_not() {
         .replace("length = 120.0", "length = 109.66");
     assert!(warnings("taut", &taut).is_empty());
 }
+
+/// The static solve from the touchdown-catenary start (docs/theory/cages.md#single-line): the
+/// reactions match the elastic catenary at 80 and 320 segments, within iteration bounds that
+/// fail if the start falls back to the free catenary projected onto the seabed (155 and no
+/// convergence at 320 segments before; 61 and 210 now).
+#[test]
+fn fine_chains_reach_the_elastic_catenary_within_bounded_iterations() {
+    let dir = scratch("chain-fine");
+    let g = 9.80665;
+    let d = 0.1354f64;
+    let w = (113.0 - 1025.0 * std::f64::consts::FRAC_PI_4 * d * d) * g;
+    let sink = w / (3e6 * d);
+    let (hh, v) = touchdown(100.0, 45.0 + sink, 120.0, w, 5.4e8);
+    for (segments, bound) in [(80, 80), (320, 260)] {
+        let text = example("mooring-chain.toml")
+            .replace("kind = \"static+dynamic\"", "kind = \"static\"")
+            .replace("segments = 80", &format!("segments = {segments}"));
+        let out = run_text(&dir, &format!("n{segments}"), &text);
+        let row = &summary(&out)[0];
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        let iterations = json["static_newton_iterations"].as_u64().unwrap();
+        assert!(
+            iterations <= bound,
+            "{segments} segments: {iterations} iterations"
+        );
+        let fair = row["chain_fairlead_reaction"];
+        assert!(
+            (fair / hh.hypot(v) - 1.0).abs() < 5e-4,
+            "{segments}: fairlead {fair}"
+        );
+        let anchor = row["chain_anchor_reaction"];
+        assert!(
+            (anchor / hh - 1.0).abs() < 5e-4,
+            "{segments}: anchor {anchor} vs H {hh}"
+        );
+    }
+}
