@@ -127,7 +127,7 @@ impl DesignChecks {
                      dynamic minimum tension was 8 % low at 20 segments and 2 % at 40 \
                      (docs/theory/fem.md#mesh-resolution-warnings). Refine it to at least \
                      {MIN_SAGGING_SEGMENTS} segments (`segments`, or a farm's \
-                     `element_length`), or compare with `aqua study --vary segments=...`",
+                     `anchor_segments`), or compare with `aqua study --vary segments=...`",
                     l.name
                 ),
             )
