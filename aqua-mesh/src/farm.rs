@@ -27,7 +27,7 @@
 use crate::Mesh;
 use crate::cage::CageParams;
 use crate::error::{MeshError, Result};
-use crate::line::{catenary_nodes, touchdown_points};
+use crate::line::hanging_points;
 use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -55,6 +55,10 @@ pub struct BuoyParams {
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct FarmParams {
+    /// Strain by which the anchor lines' initial catenaries are stretched (not a scene key; see
+    /// [`crate::line::INITIAL_STRETCH`]).
+    #[serde(skip)]
+    pub initial_stretch: f64,
     /// `name` (default `farm<index>`, set by the caller; `farm0` here).
     pub name: Option<String>,
     /// Cage rows (along y), ≥ 1.
@@ -443,6 +447,7 @@ impl FarmParams {
                 &parts,
                 anchor_el,
                 zb,
+                self.initial_stretch,
             )?;
             mesh.append(line);
             weld_tail(&mut mesh, &[plate_node(i, j)]);
@@ -766,8 +771,9 @@ fn frame_object(
 
 /// An anchor line from `anchor` (fixed, on the seabed `zb`) to `fairlead`: consecutive parts
 /// (group name, section, unstretched length) from the anchor, each with elements of about
-/// `el`; initial shape the inextensible catenary of the total length, projected onto the
-/// seabed. Groups as a `[[line]]` (`anchor`, `fairlead`, `line_nodes`, `fixed` = anchor).
+/// `el`; initial shape the inextensible catenary of the total length stretched by the strain
+/// `stretch`, with touchdown when it lies on the seabed (as a `[[line]]`'s). Groups as a
+/// `[[line]]` (`anchor`, `fairlead`, `line_nodes`, `fixed` = anchor).
 pub fn anchor_line(
     name: &str,
     anchor: Point3<f64>,
@@ -775,14 +781,19 @@ pub fn anchor_line(
     parts: &[(&str, Section, f64)],
     el: f64,
     zb: f64,
+    stretch: f64,
 ) -> Result<Mesh> {
     let total: f64 = parts.iter().map(|p| p.2).sum();
     let counts: Vec<usize> = parts.iter().map(|p| segments(p.2, el)).collect();
     let n: usize = counts.iter().sum();
     let arc: Vec<f64> = (0..=n).map(|i| total * i as f64 / n as f64).collect();
-    let mut pts = touchdown_points(anchor, fairlead, total, &arc, zb)
-        .or_else(|| catenary_nodes(anchor, fairlead, total, n))
-        .ok_or_else(|| MeshError::inconsistent(name, "anchor and fairlead coincide"))?;
+    let mut pts = hanging_points(anchor, fairlead, total, &arc, Some(zb), stretch);
+    if pts.is_empty() {
+        return Err(MeshError::inconsistent(
+            name,
+            "anchor and fairlead coincide",
+        ));
+    }
     for p in pts.iter_mut() {
         p.z = p.z.max(zb);
     }

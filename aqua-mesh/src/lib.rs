@@ -62,7 +62,7 @@ pub use error::{FilePos, MeshError, Result};
 pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use limits::MAX_LENGTH;
-pub use line::{Fairlead, LineParams, LineSegment, LineShape};
+pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
 pub use mesh::{
     CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,
     ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section, SectionOverride,

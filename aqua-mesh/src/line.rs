@@ -41,6 +41,11 @@ pub enum LineShape {
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LineParams {
+    /// Strain by which the initial catenary is stretched (not a scene key: the scene builder
+    /// sets [`INITIAL_STRETCH`] when a static solve starts from the shape; 0 keeps the
+    /// unstretched as-built line that dynamics-only runs start from at rest).
+    #[serde(skip)]
+    pub initial_stretch: f64,
     /// `name` (default `line0`).
     pub name: Option<String>,
     /// `anchor` [m].
@@ -322,6 +327,34 @@ fn finite3(obj: &str, key: &str, v: [f64; 3]) -> Result<Point3<f64>> {
     }
 }
 
+/// Strain by which a hanging line's initial shape is stretched when a static solve starts from
+/// it (the scene builder sets it; dynamics-only runs keep the unstretched shape): its
+/// elements then start taut (where their chord deficit on the curve is below it), with their
+/// axial stiffness in the first tangent. From the unstretched shape the slack elements were
+/// invisible to the tangent and each Newton step over-stretched them
+/// (docs/theory/cages.md#single-line).
+pub const INITIAL_STRETCH: f64 = 1e-4;
+
+/// The initial shape of a hanging line of unstretched length `l0` from `a` to `b` at arc lengths
+/// `arc`: the touchdown catenary when the anchor lies on the seabed z = `zb` and the line touches
+/// down, else the free catenary (straight if it cannot sag), for the length stretched by the
+/// strain `stretch` (e.g. [`INITIAL_STRETCH`]). Empty if `a == b`.
+pub fn hanging_points(
+    a: Point3<f64>,
+    b: Point3<f64>,
+    l0: f64,
+    arc: &[f64],
+    seabed_z: Option<f64>,
+    stretch: f64,
+) -> Vec<Point3<f64>> {
+    let stretch = 1.0 + stretch;
+    let arc: Vec<f64> = arc.iter().map(|s| s * stretch).collect();
+    seabed_z
+        .and_then(|zb| touchdown_points(a, b, l0 * stretch, &arc, zb))
+        .or_else(|| catenary_points(a, b, l0 * stretch, &arc))
+        .unwrap_or_default()
+}
+
 /// Positions at arc lengths `arc` from `a` of an inextensible line of length `l0` from an anchor
 /// `a` on the seabed z = `zb` to a fairlead `b` above it, lying on the seabed from `a` and
 /// rising from the touchdown point as the catenary whose vertex is there:
@@ -561,10 +594,9 @@ impl LineParams {
                 .iter()
                 .map(|&s| anchor + (fair - anchor) * (s / l0))
                 .collect(),
-            LineShape::Catenary => seabed_z
-                .and_then(|zb| touchdown_points(anchor, fair, l0, &arc, zb))
-                .or_else(|| catenary_points(anchor, fair, l0, &arc))
-                .unwrap_or_default(),
+            LineShape::Catenary => {
+                hanging_points(anchor, fair, l0, &arc, seabed_z, self.initial_stretch)
+            }
         };
         if let Some(p) = pts.last_mut() {
             *p = fair;

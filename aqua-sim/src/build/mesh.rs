@@ -254,6 +254,17 @@ pub(crate) fn build_mesh_parts(scene: &Scene) -> Result<MeshParts> {
 }
 
 /// The seabed level z = −depth of a finite sea [m].
+/// The strain by which hanging lines start stretched: [`aqua_mesh::INITIAL_STRETCH`] when a
+/// static solve starts from the as-built shape (every element taut for its first tangent,
+/// docs/theory/cages.md#single-line), 0 for dynamics-only runs, which start from the as-built
+/// shape at rest.
+fn start_stretch(scene: &Scene) -> f64 {
+    match scene.analysis.kind {
+        crate::scene::AnalysisKind::Dynamic => 0.0,
+        _ => aqua_mesh::INITIAL_STRETCH,
+    }
+}
+
 fn seabed_z(scene: &Scene) -> Option<f64> {
     scene.sea.depth.as_ref().and_then(|_| {
         scene
@@ -273,6 +284,7 @@ fn add_farm(
     c: &crate::scene::Located<crate::scene::FarmSpec>,
 ) -> Result<BuiltFarm> {
     let mut p = c.value.params.clone();
+    p.initial_stretch = start_stretch(scene);
     // Checked as every object name: it prefixes the farm's objects ("farm/cage_r1c1").
     let name = m.name(&p.name, "farm", i, c.line)?;
     p.name = Some(name.clone());
@@ -330,6 +342,7 @@ fn add_line(
     let seabed_z = seabed_z(scene);
     let mut p = c.value.params.clone();
     p.name = Some(m.name(&p.name, "line", i, c.line)?);
+    p.initial_stretch = start_stretch(scene);
     let mut weld_to = None;
     let mut fair_pos = None;
     if let Some(Fairlead::Node(r)) = &p.fairlead {
