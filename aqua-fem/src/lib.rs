@@ -15,8 +15,10 @@
 //!
 //! * Cable element (nodes a, b; L0, EA, r_c, c_a): l = |x_b − x_a|, e = (x_b − x_a)/l,
 //!   ε = (l − L0)/L0, ε̇ = eᵀ(v_b − v_a)/L0, s = 1 if ε > 0 else r_c,
-//!   T = s·(EA·ε + c_a·ε̇), f_int,a = −T·e, f_int,b = +T·e; tangent
-//!   k = s·EA/L0·eeᵀ + T/l·(I − eeᵀ) (+ the small non-symmetric damping term), c = s·c_a/L0·eeᵀ.
+//!   T = s·EA·ε + d·c_a·ε̇ with d = s except on the ramp 0 < ε < 1e-5 where the damping grows
+//!   from r_c to 1, f_int,a = −T·e, f_int,b = +T·e; tangent
+//!   k = (s·EA + d′·c_a·ε̇)/L0·eeᵀ + T/l·(I − eeᵀ) (+ the small non-symmetric damping term),
+//!   c = d·c_a/L0·eeᵀ.
 //! * Mass: lumped μL0/2 per node (default) or consistent μL0/6·[2I, I; I, 2I]; point masses and
 //!   the provider's added-mass 3×3 blocks add per node.
 //! * Bending hinge (nodes a, b, c; EI, as-built κ̄ and ℓ̄): t = ê₁·ê₂ of the edges

@@ -85,7 +85,8 @@ pub enum AxialDamping {
     /// No axial damping.
     #[default]
     None,
-    /// Axial damping coefficient c_a [N·s] (T = s·(EA·ε + c_a·ε̇)).
+    /// Axial damping coefficient c_a [N·s] (T = s·EA·ε + d(ε)·c_a·ε̇,
+    /// docs/theory/fem.md#cable-element).
     Coefficient(f64),
     /// Ratio ζ of critical: c_a = ζ·L0·√(EA·μ) per element.
     Ratio(f64),

@@ -7,8 +7,11 @@
 //! catenary of length L0 through both ends, z = a·cosh((x − x0)/a) + c in the vertical plane
 //! of the chord, with a from √(L0² − h²) = 2a·sinh(l/2a) (l horizontal, h vertical span),
 //! nodes at their arc lengths (i·L0/N for one section; the segments' own spacing otherwise),
-//! and nodes below the seabed projected onto it. The catenary is that of a uniform line: for
-//! segments of different weights it is a starting shape only, statics finds the true one.
+//! and nodes below the seabed projected onto it. An anchor on the seabed with a line that
+//! touches down starts as the catenary with touchdown ([`touchdown_points`]), and when statics
+//! follow the length is stretched by [`INITIAL_STRETCH`] (docs/theory/cages.md#single-line).
+//! The catenary is that of a uniform line: for segments of different weights it is a starting
+//! shape only, statics finds the true one.
 
 use crate::Mesh;
 use crate::error::{MeshError, Result};
