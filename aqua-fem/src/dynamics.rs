@@ -56,6 +56,22 @@ pub struct DynamicSettings {
     /// (docs/theory/fem.md#energy-consistent-midpoint). Default false.
     #[serde(default)]
     pub midpoint: bool,
+    /// How each Newton system is solved (docs/theory/fem.md#sparse-linear-algebra). Default
+    /// [`LinearSolverKind::Lu`].
+    #[serde(default)]
+    pub linear_solver: LinearSolverKind,
+}
+
+/// The factorisation of the dynamic Newton systems.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LinearSolverKind {
+    /// L·D·Lᵀ of the symmetric part, refined on the non-symmetric rest to 1e-12, with the
+    /// sparse LU as fallback when the refinement does not contract.
+    Symmetric,
+    /// Sparse LU with partial pivoting of the full tangent.
+    #[default]
+    Lu,
 }
 
 /// Smallest fraction of a Newton update that backtracking tries.
@@ -82,6 +98,7 @@ impl DynamicSettings {
             fd_position_jacobian: false,
             reuse_factor: 1,
             midpoint: false,
+            linear_solver: LinearSolverKind::Lu,
         }
     }
 
@@ -429,7 +446,8 @@ impl<'m> DynamicSolver<'m> {
         provider: &mut P,
     ) -> Result<Self> {
         settings.validate()?;
-        let sys = System::new(model, &*provider)?;
+        let mut sys = System::new(model, &*provider)?;
+        sys.symmetric = settings.linear_solver == LinearSolverKind::Symmetric;
         let n = model.n_nodes();
         let mut state = match initial {
             Some(s) => {

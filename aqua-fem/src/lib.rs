@@ -88,12 +88,13 @@ pub mod model;
 pub mod motion;
 pub mod state;
 pub mod statics;
+mod symmetric;
 mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, MassMatrix,
-    StepControl, StepEvent, StepReport, TensionResolution,
+    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
+    MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

@@ -8,6 +8,7 @@ use crate::error::{FemError, Result};
 use crate::friction::{self, Normal};
 use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
 use crate::model::Model;
+use crate::symmetric::SymmetricSolver;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{NumericLu, SymbolicLu, factorize_symbolic_lu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -15,6 +16,8 @@ use faer::{Conj, MatMut, Par};
 use rayon::prelude::*;
 
 pub(crate) const NONE: usize = usize::MAX;
+/// Factorisations on the LU after the symmetric path failed before it is tried again.
+const SYMMETRIC_PAUSE: usize = 64;
 /// Element count above which element kernels run in parallel.
 const PAR_THRESHOLD: usize = 4096;
 
@@ -119,6 +122,20 @@ pub(crate) struct System {
     pub diag_pos: Vec<usize>,
     solver: Option<LinearSolver>,
     pub n_factorisations: usize,
+    /// Factorise the symmetric part as L·D·Lᵀ and refine on the rest (dynamics), with the LU
+    /// as fallback (docs/theory/fem.md#sparse-linear-algebra).
+    pub symmetric: bool,
+    sym: Option<SymmetricSolver>,
+    /// The last factorisation is the symmetric one.
+    sym_active: bool,
+    /// Factorisations left on the LU after a symmetric fallback.
+    sym_pause: usize,
+    /// The pattern is not structurally symmetric: LU only.
+    sym_unusable: bool,
+    /// Solves that fell back from the symmetric factor to the LU.
+    pub n_symmetric_fallbacks: usize,
+    /// Refinement sweeps of all symmetric solves.
+    pub n_refinement_sweeps: usize,
     load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
     /// When set, the cables' elastic force is the discrete gradient between these start and
     /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
@@ -336,6 +353,13 @@ impl System {
             diag_pos,
             solver: None,
             n_factorisations: 0,
+            symmetric: false,
+            sym: None,
+            sym_active: false,
+            sym_pause: 0,
+            sym_unusable: false,
+            n_symmetric_fallbacks: 0,
+            n_refinement_sweeps: 0,
             load_scratch: Default::default(),
             secant: None,
         })
@@ -796,7 +820,8 @@ impl System {
         }
     }
 
-    /// Numeric LU of the current `values` (symbolic analysis on first use).
+    /// Factorises the current `values`: the symmetric L·D·Lᵀ with refinement when `symmetric`
+    /// is set and it applies, else the sparse LU (symbolic analyses on first use).
     pub fn factorize(&mut self) -> Result<()> {
         let nf = self.n_free();
         if nf == 0 {
@@ -805,6 +830,38 @@ impl System {
         if let Some(v) = self.values.iter().find(|v| !v.is_finite()) {
             return Err(FemError::NonFinite(format!("Jacobian entry {v}")));
         }
+        self.sym_active = false;
+        if self.symmetric && !self.sym_unusable {
+            if self.sym_pause > 0 {
+                self.sym_pause -= 1;
+            } else {
+                if self.sym.is_none() {
+                    self.sym = SymmetricSolver::new(nf, &self.col_ptr, &self.row_idx)?;
+                    self.sym_unusable = self.sym.is_none();
+                }
+                if let Some(s) = self.sym.as_mut() {
+                    if s.factorize(&self.values).is_ok() {
+                        self.sym_active = true;
+                        self.n_factorisations += 1;
+                        return Ok(());
+                    }
+                    self.symmetric_fallback();
+                }
+            }
+        }
+        self.factorize_lu(None)
+    }
+
+    /// After the symmetric path failed: LU for the next `SYMMETRIC_PAUSE` factorisations.
+    fn symmetric_fallback(&mut self) {
+        self.n_symmetric_fallbacks += 1;
+        self.sym_pause = SYMMETRIC_PAUSE;
+        self.sym_active = false;
+    }
+
+    /// Numeric LU of `values` (the current `self.values` if `None`).
+    fn factorize_lu(&mut self, values: Option<&[f64]>) -> Result<()> {
+        let nf = self.n_free();
         // SAFETY-free: the pattern was built with sorted, in-range, unique row indices.
         let sym = SymbolicSparseColMatRef::new_checked(nf, nf, &self.col_ptr, None, &self.row_idx);
         if self.solver.is_none() {
@@ -822,7 +879,7 @@ impl System {
             });
         }
         let s = self.solver.as_mut().expect("solver initialised");
-        let mat = SparseColMatRef::new(sym, &self.values);
+        let mat = SparseColMatRef::new(sym, values.unwrap_or(&self.values));
         s.symbolic
             .factorize_numeric_lu(
                 &mut s.numeric,
@@ -841,6 +898,21 @@ impl System {
         let nf = self.n_free();
         if nf == 0 {
             return Ok(());
+        }
+        if self.sym_active {
+            let sym = self.sym.as_mut().expect("symmetric factor");
+            let out = sym.solve(&self.col_ptr, &self.row_idx, rhs);
+            self.n_refinement_sweeps += sym.last_sweeps;
+            if out.is_ok() {
+                return Ok(());
+            }
+            // The LU of the same matrix the symmetric factor was made of.
+            let factored = std::mem::take(&mut self.sym.as_mut().expect("symmetric").factored);
+            let lu = self.factorize_lu(Some(&factored));
+            self.sym.as_mut().expect("symmetric").factored = factored;
+            self.n_factorisations -= 1; // the same matrix: one factorisation counted
+            self.symmetric_fallback();
+            lu?;
         }
         let s = self
             .solver

@@ -119,6 +119,7 @@ impl Plan {
                 s.output_interval = Some(output_interval);
                 s.max_strain = d.max_strain;
                 s.reuse_factor = d.reuse_factor;
+                s.linear_solver = d.linear_solver;
                 s.midpoint = d.scheme == crate::scene::Scheme::Midpoint;
                 Integrator::Hht(s)
             }

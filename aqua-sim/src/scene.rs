@@ -417,6 +417,9 @@ pub struct DynamicSpec {
     /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
     /// halves the residual (1 = full Newton).
     pub reuse_factor: usize,
+    /// Newton systems: `"lu"` (default) or `"symmetric"` (L·D·Lᵀ of the symmetric part,
+    /// refined on the rest, LU fallback; docs/theory/fem.md#sparse-linear-algebra).
+    pub linear_solver: aqua_fem::LinearSolverKind,
 }
 
 /// The nominal HHT step when the scene gives none [s].
@@ -445,6 +448,7 @@ impl Default for DynamicSpec {
             output_interval: None,
             max_strain: hht.max_strain,
             reuse_factor: hht.reuse_factor,
+            linear_solver: hht.linear_solver,
         }
     }
 }

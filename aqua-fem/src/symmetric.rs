@@ -1,0 +1,336 @@
+//! Symmetric factorisation of a nearly symmetric tangent with iterative refinement on the
+//! non-symmetric remainder (docs/theory/fem.md#sparse-linear-algebra).
+//!
+//! The dynamic tangent J = m·M + c·C + k·K is symmetric except for the water loads'
+//! velocity and position derivatives. Writing J = S + A with S = ½(J + Jᵀ) and A = ½(J − Jᵀ),
+//! S is factorised once per Newton iteration as L·D·Lᵀ (supernodal, AMD ordering, the symbolic
+//! analysis reused) and J·y = b is solved by the stationary iteration
+//!
+//! ```text
+//! y₀ = S⁻¹·b,    y_{k+1} = y_k + S⁻¹·(b − J·y_k)
+//! ```
+//!
+//! whose error contracts by the spectral radius of S⁻¹A per sweep. It stops when
+//! ‖b − J·y‖₂ ≤ `REFINE_TOL`·‖b‖₂, so the Newton step is that of J to round-off and Newton's
+//! convergence is unchanged. When a sweep shrinks the residual by less than 10 %, or after `MAX_SWEEPS`, or
+//! when the L·D·Lᵀ has a zero pivot, the caller falls back to the sparse LU of J.
+
+use crate::error::{FemError, Result};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+/// Refinement stops at ‖b − J·y‖₂ ≤ REFINE_TOL·‖b‖₂ (far below the Newton tolerances, so
+/// the inexact solve does not change Newton's iterates beyond round-off of the tolerance).
+const REFINE_TOL: f64 = 1e-10;
+/// Refinement sweeps before giving up on the symmetric factor.
+const MAX_SWEEPS: usize = 30;
+/// A sweep must shrink the residual by at least this factor.
+const MIN_CONTRACTION: f64 = 0.9;
+
+/// The L·D·Lᵀ of the symmetric part of a structurally symmetric CSC matrix.
+pub(crate) struct SymmetricSolver {
+    n: usize,
+    /// Upper-triangle pattern (CSC, rows sorted).
+    up_col_ptr: Vec<usize>,
+    up_row_idx: Vec<usize>,
+    /// For each upper entry (r, c): positions of (r, c) and (c, r) in the full values.
+    pairs: Vec<(usize, usize)>,
+    up_values: Vec<f64>,
+    symbolic: SymbolicCholesky<usize>,
+    l_values: Vec<f64>,
+    mem: MemBuffer,
+    /// The full matrix at the last factorisation (refinement residuals use it).
+    pub(crate) factored: Vec<f64>,
+    b: Vec<f64>,
+    y: Vec<f64>,
+    res: Vec<f64>,
+    /// Refinement sweeps of the last solve.
+    pub last_sweeps: usize,
+}
+
+impl std::fmt::Debug for SymmetricSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SymmetricSolver")
+            .field("n", &self.n)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Why the symmetric path could not give the solution; the caller then uses the LU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SymmetricFallback {
+    /// The L·D·Lᵀ met a zero pivot.
+    ZeroPivot,
+    /// Refinement did not contract (the non-symmetric part is too large).
+    NoContraction,
+    /// Refinement gave a non-finite iterate.
+    NonFinite,
+}
+
+impl SymmetricSolver {
+    /// Symbolic analysis of the symmetric part of the pattern `col_ptr`/`row_idx` (n × n);
+    /// `None` if the pattern is not structurally symmetric.
+    pub(crate) fn new(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<Option<Self>> {
+        let pos = |r: usize, c: usize| -> Option<usize> {
+            let s = &row_idx[col_ptr[c]..col_ptr[c + 1]];
+            s.binary_search(&r).ok().map(|k| col_ptr[c] + k)
+        };
+        let mut up_col_ptr = Vec::with_capacity(n + 1);
+        let mut up_row_idx = Vec::new();
+        let mut pairs = Vec::new();
+        up_col_ptr.push(0);
+        for c in 0..n {
+            for p in col_ptr[c]..col_ptr[c + 1] {
+                let r = row_idx[p];
+                let Some(q) = pos(c, r) else {
+                    return Ok(None);
+                };
+                if r <= c {
+                    up_row_idx.push(r);
+                    pairs.push((p, q));
+                }
+            }
+            up_col_ptr.push(up_row_idx.len());
+        }
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &up_col_ptr, None, &up_row_idx);
+        let params = CholeskySymbolicParams {
+            // faer's automatic choice picks the simplicial factor for cage tangents, which
+            // measured 1.7x slower than the supernodal one on the reference cage.
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, params)
+                .map_err(|e| FemError::Linear(format!("symbolic LDLt: {e:?}")))?;
+        let req = symbolic
+            .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let mem = MemBuffer::try_new(req)
+            .map_err(|_| FemError::Linear("out of memory for LDLt workspace".into()))?;
+        let nnz_up = up_row_idx.len();
+        Ok(Some(Self {
+            n,
+            l_values: vec![0.0; symbolic.len_val()],
+            symbolic,
+            up_col_ptr,
+            up_row_idx,
+            pairs,
+            up_values: vec![0.0; nnz_up],
+            mem,
+            factored: vec![0.0; col_ptr[n]],
+            b: vec![0.0; n],
+            y: vec![0.0; n],
+            res: vec![0.0; n],
+            last_sweeps: 0,
+        }))
+    }
+
+    /// Factorises S = ½(J + Jᵀ) of the full values `values` (same pattern as at `new`).
+    pub(crate) fn factorize(
+        &mut self,
+        values: &[f64],
+    ) -> std::result::Result<(), SymmetricFallback> {
+        for (u, &(p, q)) in self.up_values.iter_mut().zip(&self.pairs) {
+            *u = 0.5 * (values[p] + values[q]);
+        }
+        self.factored.copy_from_slice(values);
+        let sym = SymbolicSparseColMatRef::new_checked(
+            self.n,
+            self.n,
+            &self.up_col_ptr,
+            None,
+            &self.up_row_idx,
+        );
+        let mat = SparseColMatRef::new(sym, &self.up_values);
+        self.symbolic
+            .factorize_numeric_ldlt(
+                &mut self.l_values,
+                mat,
+                Side::Upper,
+                LdltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut self.mem),
+                Default::default(),
+            )
+            .map(|_| ())
+            .map_err(|_| SymmetricFallback::ZeroPivot)
+    }
+
+    fn solve_s(&mut self, rhs: &mut [f64]) {
+        let ldlt = LdltRef::new(&self.symbolic, &self.l_values);
+        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
+        ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.mem));
+    }
+
+    /// Solves J·y = rhs in place (J as at the last `factorize`, in the CSC pattern
+    /// `col_ptr`/`row_idx`). On `Err` `rhs` is left unchanged.
+    pub(crate) fn solve(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        rhs: &mut [f64],
+    ) -> std::result::Result<(), SymmetricFallback> {
+        self.b.copy_from_slice(rhs);
+        let bn = norm(&self.b);
+        let mut y = std::mem::take(&mut self.y);
+        let mut res = std::mem::take(&mut self.res);
+        y.copy_from_slice(rhs);
+        self.solve_s(&mut y);
+        let out = self.refine(col_ptr, row_idx, &mut y, &mut res, bn);
+        if out.is_ok() {
+            rhs.copy_from_slice(&y);
+        }
+        self.y = y;
+        self.res = res;
+        out
+    }
+
+    /// The refinement sweeps on `y` (initially S⁻¹·b); `res` is scratch.
+    fn refine(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        y: &mut [f64],
+        res: &mut [f64],
+        bn: f64,
+    ) -> std::result::Result<(), SymmetricFallback> {
+        let mut last = f64::INFINITY;
+        self.last_sweeps = 0;
+        loop {
+            // res = b − J·y
+            res.copy_from_slice(&self.b);
+            for c in 0..self.n {
+                let yc = y[c];
+                for p in col_ptr[c]..col_ptr[c + 1] {
+                    res[row_idx[p]] -= self.factored[p] * yc;
+                }
+            }
+            let rn = norm(res);
+
+            if !rn.is_finite() {
+                return Err(SymmetricFallback::NonFinite);
+            }
+            if rn <= REFINE_TOL * bn {
+                return Ok(());
+            }
+            if rn > MIN_CONTRACTION * last || self.last_sweeps == MAX_SWEEPS {
+                return Err(SymmetricFallback::NoContraction);
+            }
+            last = rn;
+            self.solve_s(res);
+            for (yi, d) in y.iter_mut().zip(res.iter()) {
+                *yi += d;
+            }
+            self.last_sweeps += 1;
+        }
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// CSC of a dense n × n matrix keeping the entries where `keep(r, c)`.
+    fn csc(a: &nalgebra::DMatrix<f64>, keep: impl Fn(usize, usize) -> bool) -> CscParts {
+        let n = a.nrows();
+        let (mut cp, mut ri, mut v) = (vec![0], Vec::new(), Vec::new());
+        for c in 0..n {
+            for r in 0..n {
+                if keep(r, c) {
+                    ri.push(r);
+                    v.push(a[(r, c)]);
+                }
+            }
+            cp.push(ri.len());
+        }
+        (cp, ri, v)
+    }
+    type CscParts = (Vec<usize>, Vec<usize>, Vec<f64>);
+
+    /// A banded tangent like a chain's: SPD symmetric part (mass + stiffness) plus a
+    /// skew part of relative size `skew` (drag-like), half-bandwidth 3.
+    fn tangent(n: usize, skew: f64) -> nalgebra::DMatrix<f64> {
+        let mut a = nalgebra::DMatrix::zeros(n, n);
+        for i in 0..n {
+            a[(i, i)] = 4.0 + (i % 5) as f64 * 0.3;
+            for d in 1..=3 {
+                if i + d < n {
+                    let s = -0.5 / d as f64;
+                    let k = skew * (((i * 7 + d * 3) % 11) as f64 / 11.0 - 0.5);
+                    a[(i, i + d)] = s + k;
+                    a[(i + d, i)] = s - k;
+                }
+            }
+        }
+        a
+    }
+
+    fn solve_both(
+        a: &nalgebra::DMatrix<f64>,
+    ) -> (std::result::Result<(), SymmetricFallback>, f64, usize) {
+        let n = a.nrows();
+        let (cp, ri, v) = csc(a, |r, c| r.abs_diff(c) <= 3);
+        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        s.factorize(&v).unwrap();
+        let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
+        let mut y = b.clone();
+        let out = s.solve(&cp, &ri, &mut y);
+        // Independent solution: nalgebra's dense LU.
+        let exact = a
+            .clone()
+            .lu()
+            .solve(&nalgebra::DVector::from_vec(b))
+            .unwrap();
+        let err = (nalgebra::DVector::from_vec(y) - &exact).norm() / exact.norm();
+        (out, err, s.last_sweeps)
+    }
+
+    #[test]
+    fn symmetric_matrix_needs_no_refinement() {
+        let (out, err, sweeps) = solve_both(&tangent(60, 0.0));
+        assert_eq!(out, Ok(()));
+        assert!(err < 1e-13, "{err}");
+        assert_eq!(sweeps, 0);
+    }
+
+    #[test]
+    fn small_skew_part_is_refined_to_the_exact_solution() {
+        let (out, err, sweeps) = solve_both(&tangent(60, 0.05));
+        assert_eq!(out, Ok(()));
+        assert!(err < 1e-10, "{err}");
+        // Contraction ≈ ‖S⁻¹A‖ ≈ 1e-2 per sweep: a handful of sweeps, not the maximum.
+        assert!((1..=6).contains(&sweeps), "{sweeps} sweeps");
+    }
+
+    #[test]
+    fn large_skew_part_falls_back_and_leaves_the_rhs() {
+        let a = tangent(60, 12.0);
+        let n = a.nrows();
+        let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
+        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        s.factorize(&v).unwrap();
+        let b = vec![1.0; n];
+        let mut y = b.clone();
+        let out = s.solve(&cp, &ri, &mut y);
+        assert!(out.is_err(), "{out:?}");
+        assert_eq!(y, b);
+    }
+
+    #[test]
+    fn unsymmetric_pattern_is_refused() {
+        let a = tangent(10, 0.0);
+        let (cp, ri, _) = csc(&a, |r, c| r == c || r == c + 1);
+        assert!(SymmetricSolver::new(10, &cp, &ri).unwrap().is_none());
+    }
+}
