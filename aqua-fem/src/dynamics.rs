@@ -595,6 +595,11 @@ impl<'m> DynamicSolver<'m> {
     pub fn total_iterations(&self) -> usize {
         self.total_iterations
     }
+    /// Symmetric-factorisation solves that fell back to the LU, and refinement sweeps of all
+    /// symmetric solves (both 0 with [`LinearSolverKind::Lu`]).
+    pub fn symmetric_solver_stats(&self) -> (usize, usize) {
+        (self.sys.n_symmetric_fallbacks, self.sys.n_refinement_sweeps)
+    }
     /// What the step control did so far.
     pub fn step_control(&self) -> &StepControl {
         &self.control

@@ -836,7 +836,9 @@ impl System {
                 self.sym_pause -= 1;
             } else {
                 if self.sym.is_none() {
-                    self.sym = SymmetricSolver::new(nf, &self.col_ptr, &self.row_idx)?;
+                    // A failed symbolic analysis leaves the LU, which has its own errors.
+                    self.sym =
+                        SymmetricSolver::new(nf, &self.col_ptr, &self.row_idx).unwrap_or(None);
                     self.sym_unusable = self.sym.is_none();
                 }
                 if let Some(s) = self.sym.as_mut() {
