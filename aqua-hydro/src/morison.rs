@@ -216,20 +216,12 @@ impl MorisonModel {
                 ..Default::default()
             },
             Self::M3 => {
-                if re < 200.0 {
-                    let cn = 10f64.powf(0.7) * re.powf(-0.3);
-                    MorisonCoeffs {
-                        cn,
-                        ct: 0.1,
-                        dcn: -0.3 * cn / re,
-                        ..Default::default()
-                    }
-                } else {
-                    MorisonCoeffs {
-                        cn: 1.2,
-                        ct: 0.1,
-                        ..Default::default()
-                    }
+                let (cn, dcn) = m3_normal(re);
+                MorisonCoeffs {
+                    cn,
+                    ct: 0.1,
+                    dcn,
+                    ..Default::default()
                 }
             }
             Self::M4 => {
@@ -280,19 +272,76 @@ impl MorisonModel {
 
 /// Choo & Casarella normal coefficient (branches as published, with the corrected
 /// 1 − exp(−Re/5.99e5) term) and its derivative on the active branch. `re` ≤ 1e7.
+/// Half-width of the band around a joint of a piecewise C_n(Re) over which the two branches
+/// are blended, relative to the joint's Re (docs/theory/hydrodynamics.md#joints-of-the-drag-laws).
+pub const JOINT_BAND: f64 = 0.01;
+
+/// C_n(Re) and dC_n/dRe of a piecewise law whose branch ends at `joint`: `left` below it,
+/// `right` above, blended with a C¹ smoothstep in ln Re over Re ∈ joint·[1 − δ, 1 + δ]
+/// (δ = [`JOINT_BAND`]), so the coefficient is continuous and the published branch holds
+/// exactly outside the band. `None` outside the band.
+fn across_joint(
+    re: f64,
+    joint: f64,
+    left: impl Fn(f64) -> (f64, f64),
+    right: impl Fn(f64) -> (f64, f64),
+) -> Option<(f64, f64)> {
+    let (lo, hi) = ((1.0 - JOINT_BAND).ln(), (1.0 + JOINT_BAND).ln());
+    let u = (re / joint).ln();
+    if u <= lo || u >= hi {
+        return None;
+    }
+    let xi = (u - lo) / (hi - lo);
+    let w = xi * xi * (3.0 - 2.0 * xi);
+    let dw = 6.0 * xi * (1.0 - xi) / ((hi - lo) * re);
+    let ((a, da), (b, db)) = (left(re), right(re));
+    Some((a + w * (b - a), da + w * (db - da) + dw * (b - a)))
+}
+
+/// M3 normal coefficient: 10^0.7·Re^(−0.3) below Re = 200, 1.2 above, blended at the joint.
+fn m3_normal(re: f64) -> (f64, f64) {
+    let low = |re: f64| {
+        let cn = 10f64.powf(0.7) * re.powf(-0.3);
+        (cn, -0.3 * cn / re)
+    };
+    let high = |_: f64| (1.2, 0.0);
+    if let Some(k) = across_joint(re, 200.0, low, high) {
+        k
+    } else if re < 200.0 {
+        low(re)
+    } else {
+        high(re)
+    }
+}
+
+/// Choo & Casarella's normal coefficient, branch by branch, blended at the joints Re = 1, 30,
+/// 2.33e5 and 4.92e5.
 fn choo_casarella_normal(re: f64) -> (f64, f64) {
-    if re < 1.0 {
+    const JOINTS: [f64; 4] = [1.0, 30.0, 2.33e5, 4.92e5];
+    for (j, &joint) in JOINTS.iter().enumerate() {
+        if let Some(k) = across_joint(re, joint, |r| cc_branch(j, r), |r| cc_branch(j + 1, r)) {
+            return k;
+        }
+    }
+    let branch = JOINTS.iter().take_while(|&&joint| re >= joint).count();
+    cc_branch(branch, re)
+}
+
+/// Branch `b` (0 … 4, in increasing Re) of Choo & Casarella's normal coefficient, and its
+/// derivative, at any Re > 0.
+fn cc_branch(b: usize, re: f64) -> (f64, f64) {
+    if b == 0 {
         let s = -0.07721565 + (8.0 / re).ln();
         let si = 1.0 / s;
         let cn = 8.0 * PI * (1.0 - 0.87 * si * si) * si / re;
         // d/dRe of (s⁻¹ − 0.87 s⁻³)/Re with ds/dRe = −1/Re
         let d = ((si * si - 2.61 * si.powi(4)) - (si - 0.87 * si.powi(3))) / (re * re);
         (cn, 8.0 * PI * d)
-    } else if re < 30.0 {
+    } else if b == 1 {
         (1.45 + 8.55 * re.powf(-0.9), -0.9 * 8.55 * re.powf(-1.9))
-    } else if re < 2.33e5 {
+    } else if b == 2 {
         (1.1 + 4.0 / re.sqrt(), -2.0 * re.powf(-1.5))
-    } else if re < 4.92e5 {
+    } else if b == 3 {
         (-3.41e-6 * (re - 5.78e5), -3.41e-6)
     } else {
         let e = (-re / 5.99e5).exp();
@@ -338,8 +387,83 @@ mod tests {
         assert_eq!(MorisonModel::M1.coefficients(1e3).ct, 0.1);
         assert_eq!(MorisonModel::M2.coefficients(1e3).cn, 1.3);
         assert_eq!(MorisonModel::M2.coefficients(1e3).ct, 0.0);
-        close(MorisonModel::M3.coefficients(199.999).cn, 1.02, 5e-3);
-        assert_eq!(MorisonModel::M3.coefficients(200.0).cn, 1.2);
+        // Outside the joint's band the published branches hold exactly.
+        close(
+            MorisonModel::M3.coefficients(195.0).cn,
+            5.0119 * 195f64.powf(-0.3),
+            5e-5,
+        );
+        assert_eq!(MorisonModel::M3.coefficients(205.0).cn, 1.2);
+    }
+
+    /// The spec's branches, written out independently of the implementation.
+    fn published(m: MorisonModel, re: f64) -> f64 {
+        match m {
+            MorisonModel::M3 if re < 200.0 => 10f64.powf(0.7) * re.powf(-0.3),
+            MorisonModel::M3 => 1.2,
+            _ if re < 1.0 => {
+                let s = -0.07721565 + (8.0 / re).ln();
+                8.0 * PI * (1.0 - 0.87 / (s * s)) / (s * re)
+            }
+            _ if re < 30.0 => 1.45 + 8.55 * re.powf(-0.9),
+            _ if re < 2.33e5 => 1.1 + 4.0 * re.powf(-0.5),
+            _ if re < 4.92e5 => -3.41e-6 * (re - 5.78e5),
+            _ => 0.401 * (1.0 - (-re / 5.99e5).exp()),
+        }
+    }
+
+    /// The joints of M3 and M4 are blended over ±1 % of Re: outside the bands the published
+    /// values, inside them a continuous coefficient (no jump between neighbouring samples
+    /// larger than the blend's and the branches' slopes allow), with dC_n/dRe matching
+    /// finite differences. A jump would make Newton cycle (docs/theory/hydrodynamics.md).
+    #[test]
+    fn joints_are_continuous_and_published_values_hold_outside_them() {
+        for (m, joints) in [
+            (MorisonModel::M3, vec![200.0]),
+            (MorisonModel::M4, vec![1.0, 30.0, 2.33e5, 4.92e5]),
+        ] {
+            for joint in joints {
+                for f in [0.985, 0.988, 1.012, 1.015] {
+                    let re = joint * f;
+                    let cn = m.coefficients(re).cn;
+                    assert!(
+                        (cn - published(m, re)).abs() <= 1e-12 * cn.abs().max(1.0),
+                        "{m:?} Re {re}: {cn} vs published {}",
+                        published(m, re)
+                    );
+                }
+                let (lo, hi) = (
+                    published(m, joint * (1.0 - JOINT_BAND)),
+                    published(m, joint * (1.0 + JOINT_BAND)),
+                );
+                let jump = (hi - lo).abs();
+                let n = 4000;
+                let mut prev = m.coefficients(joint * (1.0 - JOINT_BAND)).cn;
+                for k in 1..=n {
+                    let re = joint * (1.0 - JOINT_BAND + 2.0 * JOINT_BAND * k as f64 / n as f64);
+                    let c = m.coefficients(re);
+                    // A smoothstep rises at most 1.5× its mean slope; the branches' own slope
+                    // adds to it.
+                    let dre = 2.0 * JOINT_BAND * joint / n as f64;
+                    assert!(
+                        (c.cn - prev).abs() <= 2.0 * jump / n as f64 + 2.0 * c.dcn.abs() * dre,
+                        "{m:?} jump near Re {re}: {prev} -> {}",
+                        c.cn
+                    );
+                    prev = c.cn;
+                    if k % 97 == 0 {
+                        let h = 1e-6 * re;
+                        let fd =
+                            (m.coefficients(re + h).cn - m.coefficients(re - h).cn) / (2.0 * h);
+                        assert!(
+                            (fd - c.dcn).abs() <= 1e-5 * c.dcn.abs().max(jump / re),
+                            "{m:?} Re {re}: dcn {} vs fd {fd}",
+                            c.dcn
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]
