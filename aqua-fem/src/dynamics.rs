@@ -57,7 +57,7 @@ pub struct DynamicSettings {
     #[serde(default)]
     pub midpoint: bool,
     /// How each Newton system is solved (docs/theory/fem.md#sparse-linear-algebra). Default
-    /// [`LinearSolverKind::Lu`].
+    /// [`LinearSolverKind::Symmetric`].
     #[serde(default)]
     pub linear_solver: LinearSolverKind,
 }
@@ -66,12 +66,25 @@ pub struct DynamicSettings {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LinearSolverKind {
-    /// L·D·Lᵀ of the symmetric part, refined on the non-symmetric rest to 1e-12, with the
-    /// sparse LU as fallback when the refinement does not contract.
+    /// L·D·Lᵀ of the symmetric part, refined on the non-symmetric rest to 1e-10 of the
+    /// right-hand side, with the sparse LU as fallback when the refinement does not contract.
+    #[default]
     Symmetric,
     /// Sparse LU with partial pivoting of the full tangent.
-    #[default]
     Lu,
+}
+
+/// Counters of the dynamic Newton systems' linear solves.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct LinearSolverStats {
+    /// Numeric factorisations (L·D·Lᵀ or LU).
+    pub factorisations: usize,
+    /// Symmetric solves that kept an earlier L·D·Lᵀ as the preconditioner.
+    pub factor_reuses: usize,
+    /// Symmetric solves that fell back to the LU.
+    pub fallbacks: usize,
+    /// Refinement sweeps of all symmetric solves.
+    pub refinement_sweeps: usize,
 }
 
 /// Smallest fraction of a Newton update that backtracking tries.
@@ -98,7 +111,7 @@ impl DynamicSettings {
             fd_position_jacobian: false,
             reuse_factor: 1,
             midpoint: false,
-            linear_solver: LinearSolverKind::Lu,
+            linear_solver: LinearSolverKind::Symmetric,
         }
     }
 
@@ -545,6 +558,8 @@ impl<'m> DynamicSolver<'m> {
         }
         s.sys.factorize()?;
         s.sys.solve(&mut s.dx)?;
+        // The mass matrix alone is no preconditioner for a step's tangent.
+        s.sys.require_fresh_factor();
         for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
             s.state.a[gd / 3][gd % 3] = s.dx[f];
         }
@@ -595,10 +610,14 @@ impl<'m> DynamicSolver<'m> {
     pub fn total_iterations(&self) -> usize {
         self.total_iterations
     }
-    /// Symmetric-factorisation solves that fell back to the LU, and refinement sweeps of all
-    /// symmetric solves (both 0 with [`LinearSolverKind::Lu`]).
-    pub fn symmetric_solver_stats(&self) -> (usize, usize) {
-        (self.sys.n_symmetric_fallbacks, self.sys.n_refinement_sweeps)
+    /// What the linear solver did so far (docs/theory/fem.md#sparse-linear-algebra).
+    pub fn linear_solver_stats(&self) -> LinearSolverStats {
+        LinearSolverStats {
+            factorisations: self.sys.n_factorisations,
+            factor_reuses: self.sys.n_factor_reuses,
+            fallbacks: self.sys.n_symmetric_fallbacks,
+            refinement_sweeps: self.sys.n_refinement_sweeps,
+        }
     }
     /// What the step control did so far.
     pub fn step_control(&self) -> &StepControl {
@@ -611,6 +630,7 @@ impl<'m> DynamicSolver<'m> {
     /// Diagnostics for benchmarks: numeric LU of the last assembled Jacobian plus one solve,
     /// without assembly (the bare linear-algebra cost of one Newton iteration).
     pub fn factorize_and_solve_last(&mut self) -> Result<()> {
+        self.sys.require_fresh_factor();
         self.sys.factorize()?;
         self.dx.copy_from_slice(&self.r);
         self.sys.solve(&mut self.dx)
@@ -952,6 +972,8 @@ impl<'m> DynamicSolver<'m> {
         };
         if self.lu_h != h {
             self.lu_valid = false;
+            // A new Δt changes the tangent's mass and damping terms by its square.
+            self.sys.require_fresh_factor();
         }
         let mut rn_prev = f64::INFINITY;
         self.attempt_factorisations = 0;

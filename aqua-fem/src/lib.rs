@@ -94,7 +94,7 @@ mod system;
 pub use bending::Hinge;
 pub use dynamics::{
     DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
-    MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
+    LinearSolverStats, MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

@@ -3,7 +3,7 @@
 //!
 //! The dynamic tangent J = m·M + c·C + k·K is symmetric except for the water loads'
 //! velocity and position derivatives. Writing J = S + A with S = ½(J + Jᵀ) and A = ½(J − Jᵀ),
-//! S is factorised once per Newton iteration as L·D·Lᵀ (supernodal, AMD ordering, the symbolic
+//! S is factorised as L·D·Lᵀ (supernodal, AMD ordering, the symbolic
 //! analysis reused) and J·y = b is solved by the stationary iteration
 //!
 //! ```text
@@ -14,6 +14,10 @@
 //! ‖b − J·y‖₂ ≤ `REFINE_TOL`·‖b‖₂, so the Newton step is that of J to round-off and Newton's
 //! convergence is unchanged. When a sweep shrinks the residual by less than 10 %, or after `MAX_SWEEPS`, or
 //! when the L·D·Lᵀ has a zero pivot, the caller falls back to the sparse LU of J.
+//!
+//! Since the sweeps solve with J itself, the factor may be that of an earlier, nearby matrix
+//! ([`set_matrix`](SymmetricSolver::set_matrix)): it then only costs more sweeps. The caller
+//! (`System`) keeps a factor across Newton iterations and steps until it grows too stale.
 
 use crate::error::{FemError, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -53,6 +57,8 @@ pub(crate) struct SymmetricSolver {
     res: Vec<f64>,
     /// Refinement sweeps of the last solve.
     pub last_sweeps: usize,
+    /// `factored` is the matrix whose symmetric part was factorised.
+    fresh: bool,
 }
 
 impl std::fmt::Debug for SymmetricSolver {
@@ -129,6 +135,7 @@ impl SymmetricSolver {
             y: vec![0.0; n],
             res: vec![0.0; n],
             last_sweeps: 0,
+            fresh: false,
         }))
     }
 
@@ -137,10 +144,16 @@ impl SymmetricSolver {
         &mut self,
         values: &[f64],
     ) -> std::result::Result<(), SymmetricFallback> {
-        for (u, &(p, q)) in self.up_values.iter_mut().zip(&self.pairs) {
-            *u = 0.5 * (values[p] + values[q]);
-        }
         self.factored.copy_from_slice(values);
+        self.refactor()
+    }
+
+    /// Factorises the symmetric part of the matrix held for the refinement (`factored`).
+    pub(crate) fn refactor(&mut self) -> std::result::Result<(), SymmetricFallback> {
+        for (u, &(p, q)) in self.up_values.iter_mut().zip(&self.pairs) {
+            *u = 0.5 * (self.factored[p] + self.factored[q]);
+        }
+        self.fresh = true;
         let sym = SymbolicSparseColMatRef::new_checked(
             self.n,
             self.n,
@@ -161,6 +174,18 @@ impl SymmetricSolver {
             )
             .map(|_| ())
             .map_err(|_| SymmetricFallback::ZeroPivot)
+    }
+
+    /// Takes J's current `values` for the refinement and keeps the factor of an earlier
+    /// matrix's symmetric part as the preconditioner (docs/theory/fem.md#sparse-linear-algebra).
+    pub(crate) fn set_matrix(&mut self, values: &[f64]) {
+        self.factored.copy_from_slice(values);
+        self.fresh = false;
+    }
+
+    /// The factor was made from the matrix now being solved.
+    pub(crate) fn is_fresh(&self) -> bool {
+        self.fresh
     }
 
     fn solve_s(&mut self, rhs: &mut [f64]) {

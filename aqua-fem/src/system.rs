@@ -18,6 +18,10 @@ use rayon::prelude::*;
 pub(crate) const NONE: usize = usize::MAX;
 /// Factorisations on the LU after the symmetric path failed before it is tried again.
 const SYMMETRIC_PAUSE: usize = 64;
+/// A stale L·D·Lᵀ is replaced when a solve with it needs more than this many refinement
+/// sweeps beyond the last solve with a fresh one (a numeric factorisation of the reference
+/// cage costs about as much as 7 sweeps).
+const STALE_EXTRA_SWEEPS: usize = 4;
 /// Element count above which element kernels run in parallel.
 const PAR_THRESHOLD: usize = 4096;
 
@@ -136,6 +140,13 @@ pub(crate) struct System {
     pub n_symmetric_fallbacks: usize,
     /// Refinement sweeps of all symmetric solves.
     pub n_refinement_sweeps: usize,
+    /// Symmetric solves that kept an earlier L·D·Lᵀ as the preconditioner.
+    pub n_factor_reuses: usize,
+    /// The next `factorize` must factorise afresh (no usable L·D·Lᵀ, or the last one has
+    /// grown too stale).
+    sym_refactor: bool,
+    /// Refinement sweeps of the last solve with a fresh L·D·Lᵀ.
+    sym_fresh_sweeps: usize,
     load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
     /// When set, the cables' elastic force is the discrete gradient between these start and
     /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
@@ -359,6 +370,9 @@ impl System {
             sym_pause: 0,
             sym_unusable: false,
             n_symmetric_fallbacks: 0,
+            n_factor_reuses: 0,
+            sym_refactor: true,
+            sym_fresh_sweeps: 0,
             n_refinement_sweeps: 0,
             load_scratch: Default::default(),
             secant: None,
@@ -842,8 +856,17 @@ impl System {
                     self.sym_unusable = self.sym.is_none();
                 }
                 if let Some(s) = self.sym.as_mut() {
+                    if !self.sym_refactor {
+                        // The last L·D·Lᵀ stays the preconditioner; the refinement solves
+                        // with this J (docs/theory/fem.md#sparse-linear-algebra).
+                        s.set_matrix(&self.values);
+                        self.sym_active = true;
+                        self.n_factor_reuses += 1;
+                        return Ok(());
+                    }
                     if s.factorize(&self.values).is_ok() {
                         self.sym_active = true;
+                        self.sym_refactor = false;
                         self.n_factorisations += 1;
                         return Ok(());
                     }
@@ -854,11 +877,52 @@ impl System {
         self.factorize_lu(None)
     }
 
+    /// The next `factorize` factorises afresh instead of keeping an earlier L·D·Lᵀ.
+    pub fn require_fresh_factor(&mut self) {
+        self.sym_refactor = true;
+    }
+
     /// After the symmetric path failed: LU for the next `SYMMETRIC_PAUSE` factorisations.
     fn symmetric_fallback(&mut self) {
         self.n_symmetric_fallbacks += 1;
         self.sym_pause = SYMMETRIC_PAUSE;
         self.sym_active = false;
+        self.sym_refactor = true;
+    }
+
+    /// The symmetric solve of `rhs` with the current factor; a stale factor that does not
+    /// contract is replaced by a fresh one of this J and the solve repeated. `Err` leaves `rhs`
+    /// untouched (the caller falls back to the LU).
+    fn solve_symmetric(&mut self, rhs: &mut [f64]) -> std::result::Result<(), ()> {
+        let sym = self.sym.as_mut().expect("symmetric factor");
+        for _ in 0..2 {
+            let fresh = sym.is_fresh();
+            let out = sym.solve(&self.col_ptr, &self.row_idx, rhs);
+            self.n_refinement_sweeps += sym.last_sweeps;
+            match (out, fresh) {
+                (Ok(()), true) => {
+                    self.sym_fresh_sweeps = sym.last_sweeps;
+                    return Ok(());
+                }
+                (Ok(()), false) => {
+                    // Refactorise once the stale factor costs more sweeps than a new one.
+                    if sym.last_sweeps > self.sym_fresh_sweeps + STALE_EXTRA_SWEEPS {
+                        self.sym_refactor = true;
+                    }
+                    return Ok(());
+                }
+                (Err(_), true) => return Err(()),
+                (Err(_), false) => {
+                    self.n_factor_reuses -= 1;
+                    if sym.refactor().is_err() {
+                        return Err(());
+                    }
+                    self.n_factorisations += 1;
+                    self.sym_refactor = false;
+                }
+            }
+        }
+        Err(())
     }
 
     /// Numeric LU of `values` (the current `self.values` if `None`).
@@ -902,17 +966,13 @@ impl System {
             return Ok(());
         }
         if self.sym_active {
-            let sym = self.sym.as_mut().expect("symmetric factor");
-            let out = sym.solve(&self.col_ptr, &self.row_idx, rhs);
-            self.n_refinement_sweeps += sym.last_sweeps;
-            if out.is_ok() {
+            if self.solve_symmetric(rhs).is_ok() {
                 return Ok(());
             }
             // The LU of the same matrix the symmetric factor was made of.
             let factored = std::mem::take(&mut self.sym.as_mut().expect("symmetric").factored);
             let lu = self.factorize_lu(Some(&factored));
             self.sym.as_mut().expect("symmetric").factored = factored;
-            self.n_factorisations -= 1; // the same matrix: one factorisation counted
             self.symmetric_fallback();
             lu?;
         }

@@ -758,7 +758,7 @@ fn symmetric_factorisation_follows_the_lu_in_a_current() {
         s.fd_position_jacobian = true;
         let mut solver = DynamicSolver::new(&m, s, None, &mut w).unwrap();
         solver.run(&mut w, |_, _| true).unwrap();
-        let stats = solver.symmetric_solver_stats();
+        let stats = solver.linear_solver_stats();
         (
             solver.state().x[tip],
             solver.n_steps(),
@@ -767,11 +767,19 @@ fn symmetric_factorisation_follows_the_lu_in_a_current() {
         )
     };
     let (xl, nl, il, _) = run(LinearSolverKind::Lu);
-    let (xs, ns, is, (fallbacks, sweeps)) = run(LinearSolverKind::Symmetric);
-    assert_eq!(fallbacks, 0, "the symmetric path solved every system");
+    let (xs, ns, is, st) = run(LinearSolverKind::Symmetric);
+    assert_eq!(st.fallbacks, 0, "the symmetric path solved every system");
     assert!(
-        sweeps > 0,
+        st.refinement_sweeps > 0,
         "the tangent was not symmetric: the refinement ran"
+    );
+    // An earlier L·D·Lᵀ preconditions later systems: fewer factorisations than iterations,
+    // and every system either factorised or reused.
+    assert!(st.factor_reuses > 0, "{st:?}");
+    assert!(st.factorisations < is / 2, "{st:?} for {is} iterations");
+    assert!(
+        st.factorisations + st.factor_reuses >= is,
+        "{st:?} for {is} iterations"
     );
     assert!(
         xl[1].abs() > 1e-3,

@@ -2,10 +2,11 @@
 //! 672 screen panels, 0.5 m/s current), 10 s simulated at dt = 0.1 s with HHT-α (α = 0.3):
 //! time per dynamic step, (a) continuing from the static equilibrium (the example's run) and
 //! (b) starting from the as-built net at rest with the current ramped up over 10 s (the hard
-//! case: the net swings back). Issue target: under 8 ms per step.
+//! case: the net swings back), and a Newton iteration against one bare factorise + solve of the
+//! same matrix with each linear solver. Issue 15's aims: under 4 ms per step, ratio ≤ 1.5.
 
 use aqua_env::Phase;
-use aqua_fem::{DynamicSettings, DynamicSolver, State, solve_static};
+use aqua_fem::{DynamicSettings, DynamicSolver, LinearSolverKind, State, solve_static};
 use aqua_hydro::assembly::LoadAssembly;
 use aqua_sim::build::build;
 use aqua_sim::provider::WaterLoads;
@@ -54,6 +55,36 @@ fn bench(c: &mut Criterion) {
         1e3 * d.as_secs_f64() / n as f64,
         it as f64 / n as f64
     );
+    // A Newton iteration against one bare factorise + solve of the same matrix, per solver.
+    for kind in [LinearSolverKind::Symmetric, LinearSolverKind::Lu] {
+        let mut s = DynamicSettings::new(0.1, 1e9);
+        s.alpha = 0.3;
+        s.linear_solver = kind;
+        let mut solver =
+            DynamicSolver::new(&built.model, s, Some(&stat.state), &mut loads).expect("solver");
+        let k = 40;
+        let t0 = Instant::now();
+        let mut iters = 0;
+        for _ in 0..k {
+            iters += solver.step(&mut loads).expect("step").iterations;
+        }
+        let per_step = t0.elapsed().as_secs_f64() / k as f64;
+        let per_iter = t0.elapsed().as_secs_f64() / iters.max(1) as f64;
+        let t0 = Instant::now();
+        for _ in 0..k {
+            solver.factorize_and_solve_last().expect("factorise");
+        }
+        let bare = t0.elapsed().as_secs_f64() / k as f64;
+        let st = solver.linear_solver_stats();
+        eprintln!(
+            "{kind:?}: {:.2} ms/step, {:.2} ms per Newton iteration, {:.2} ms bare factorise+solve, ratio {:.2}; {:.1} refinement sweeps per solve; {st:?}",
+            1e3 * per_step,
+            1e3 * per_iter,
+            1e3 * bare,
+            per_iter / bare,
+            st.refinement_sweeps as f64 / (iters + k) as f64
+        );
+    }
     let mut g = c.benchmark_group("reference_cage_10s_dt0.1");
     g.sample_size(10);
     g.measurement_time(Duration::from_secs(20));

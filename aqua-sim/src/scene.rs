@@ -417,8 +417,8 @@ pub struct DynamicSpec {
     /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
     /// halves the residual (1 = full Newton).
     pub reuse_factor: usize,
-    /// Newton systems: `"lu"` (default) or `"symmetric"` (L·D·Lᵀ of the symmetric part,
-    /// refined on the rest, LU fallback; docs/theory/fem.md#sparse-linear-algebra).
+    /// Newton systems: `"symmetric"` (default: L·D·Lᵀ of the symmetric part, refined on the
+    /// rest, LU fallback) or `"lu"` (docs/theory/fem.md#sparse-linear-algebra).
     pub linear_solver: aqua_fem::LinearSolverKind,
 }
 
