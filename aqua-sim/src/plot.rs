@@ -151,6 +151,99 @@ pub fn line_chart(
     })
 }
 
+/// A log–log chart of `series` (lines through markers), with an optional dashed guide of slope
+/// `guide` through the first point of the first series; legend top left.
+pub fn loglog_chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: Vec<Series>,
+    guide: Option<f64>,
+) -> Result<Picture> {
+    font();
+    let err = plot_err(path);
+    let pts = || {
+        series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+    };
+    let (x0, x1) = (
+        pts().map(|p| p.0).fold(f64::INFINITY, f64::min) / 1.5,
+        pts().map(|p| p.0).fold(0.0, f64::max) * 1.5,
+    );
+    let (y0, y1) = (
+        pts().map(|p| p.1).fold(f64::INFINITY, f64::min) / 2.0,
+        pts().map(|p| p.1).fold(0.0, f64::max) * 2.0,
+    );
+    if !(x0.is_finite() && y0.is_finite() && x1 > x0 && y1 > y0) {
+        return Err(err("no positive points to draw on log axes".into()));
+    }
+    {
+        let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 26))
+            .margin(20)
+            .x_label_area_size(55)
+            .y_label_area_size(110)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| err(e.to_string()))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        if let (Some(slope), Some(&(xa, ya))) =
+            (guide, series.first().and_then(|s| s.points.first()))
+        {
+            let line: Vec<(f64, f64)> = [x0, x1]
+                .iter()
+                .map(|&x| (x, ya * (x / xa).powf(slope)))
+                .collect();
+            chart
+                .draw_series(DashedLineSeries::new(line, 8, 6, BLACK.stroke_width(1)))
+                .map_err(|e| err(e.to_string()))?
+                .label(format!("slope {slope}"))
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK));
+        }
+        for (i, s) in series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(LineSeries::new(
+                    s.points.iter().copied(),
+                    color.stroke_width(2),
+                ))
+                .map_err(|e| err(e.to_string()))?
+                .label(s.name.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
+                });
+            chart
+                .draw_series(s.points.iter().map(|&p| Circle::new(p, 5, color.filled())))
+                .map_err(|e| err(e.to_string()))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(Picture {
+        path: path.to_path_buf(),
+        title: title.to_string(),
+        series,
+    })
+}
+
 /// Draws the legend (top right) and writes the picture.
 fn finish<'a, X, Y>(
     chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
