@@ -227,15 +227,7 @@ pub fn loglog_chart(
                 .draw_series(s.points.iter().map(|&p| Circle::new(p, 5, color.filled())))
                 .map_err(|e| err(e.to_string()))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+        finish_at(&mut chart, &root, &err, SeriesLabelPosition::UpperLeft)?;
     }
     Ok(Picture {
         path: path.to_path_buf(),
@@ -254,9 +246,23 @@ where
     X: plotters::coord::ranged1d::Ranged,
     Y: plotters::coord::ranged1d::Ranged,
 {
+    finish_at(chart, root, err, SeriesLabelPosition::UpperRight)
+}
+
+/// Draws the legend at `at` and writes the picture.
+fn finish_at<'a, X, Y>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, Cartesian2d<X, Y>>,
+    root: &DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>,
+    err: &dyn Fn(String) -> SimError,
+    at: SeriesLabelPosition,
+) -> Result<()>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+{
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(at)
         .label_font(("sans-serif", 16))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
