@@ -43,6 +43,32 @@ pub enum FemError {
         first_node: usize,
         /// Number of nodes in the component.
         n_nodes: usize,
+        /// Every node of the component (for naming it).
+        nodes: Vec<usize>,
+    },
+    /// A connected part held only vertically (seabed contact, buoyancy; no node fixed in x
+    /// or y, and statics has no seabed friction) carries loads with a horizontal resultant at
+    /// the as-built position: it has no static equilibrium, the loads carry it away.
+    #[error(
+        "the part of the structure containing node {first_node} ({n_nodes} nodes) is held only \
+         vertically (seabed contact or buoyancy; no node of it is fixed in {free_dirs}, and statics \
+         has no seabed friction), but the loads on it push it horizontally with \
+         [{:.4e}, {:.4e}] N: it has no static equilibrium and would drift away; anchor it (fix a \
+         node, e.g. a line's `fixed = [\"anchor\"]`) or attach it to a held part",
+        force[0],
+        force[1]
+    )]
+    Drifting {
+        /// Lowest node index of the part.
+        first_node: usize,
+        /// Number of nodes in the part.
+        n_nodes: usize,
+        /// The free horizontal directions ("x", "y" or "x and y").
+        free_dirs: String,
+        /// Horizontal resultant of the external loads on the part [N].
+        force: [f64; 2],
+        /// Every node of the part (for naming it).
+        nodes: Vec<usize>,
     },
     /// The load provider reported an error.
     #[error("load provider, element {element}: {message}")]

@@ -200,8 +200,9 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     observer: &'o mut dyn FnMut(&StaticProgress) -> StaticControl,
 }
 
-/// Connected components (cable and load elements) held by nothing.
-pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<()> {
+/// The connected parts of the structure (joined by cable and load elements): the lowest
+/// node index of each node's part.
+fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
     let n = model.n_nodes();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut i: usize) -> usize {
@@ -228,13 +229,20 @@ pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider:
             }
         }
     }
+    (0..n).map(|i| find(&mut parent, i)).collect()
+}
+
+/// Connected parts held by nothing.
+pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<()> {
+    let n = model.n_nodes();
+    let part = parts(model, provider);
     let mut held = vec![false; n];
     provider.mark_restoring_nodes(&mut held);
     let seabed = model.env.seabed.is_some();
     let mut comp_held = vec![false; n];
     let mut comp_size = vec![0usize; n];
     for i in 0..n {
-        let r = find(&mut parent, i);
+        let r = part[i];
         comp_size[r] += 1;
         let c = (0..3).any(|k| model.is_constrained(i, k))
             || held[i]
@@ -242,10 +250,58 @@ pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider:
         comp_held[r] |= c;
     }
     for i in 0..n {
-        if find(&mut parent, i) == i && !comp_held[i] {
+        if part[i] == i && !comp_held[i] {
             return Err(FemError::Unconstrained {
                 first_node: i,
                 n_nodes: comp_size[i],
+                nodes: (0..n).filter(|&j| part[j] == i).collect(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Parts with no node fixed in x (or y) whose external loads `fext` (evaluated at the
+/// as-built position) have a horizontal resultant in that direction: nothing can balance it
+/// in statics, which has no seabed friction (docs/theory/fem.md#static-solver). A resultant
+/// below 1e-6 of the part's Σ|f| is round-off.
+fn check_held_horizontally<P: LoadProvider + ?Sized>(
+    model: &Model,
+    provider: &P,
+    fext: &[[f64; 3]],
+) -> Result<()> {
+    let n = model.n_nodes();
+    let part = parts(model, provider);
+    // Per part: fixed in x, fixed in y, resultant, Σ|f|.
+    let mut fixed = vec![[false; 2]; n];
+    let mut sum = vec![[0.0f64; 2]; n];
+    let mut abs = vec![0.0f64; n];
+    for i in 0..n {
+        let r = part[i];
+        for k in 0..2 {
+            fixed[r][k] |= model.is_constrained(i, k);
+            sum[r][k] += fext[i][k];
+        }
+        abs[r] += fext[i].iter().map(|f| f.abs()).sum::<f64>();
+    }
+    for r in 0..n {
+        if part[r] != r {
+            continue;
+        }
+        let pushed = |k: usize| !fixed[r][k] && sum[r][k].abs() > 1e-6 * abs[r] + 1e-9;
+        let dirs: Vec<&str> = [(0, "x"), (1, "y")]
+            .into_iter()
+            .filter(|&(k, _)| pushed(k))
+            .map(|(_, d)| d)
+            .collect();
+        if !dirs.is_empty() {
+            let nodes: Vec<usize> = (0..n).filter(|&i| part[i] == r).collect();
+            return Err(FemError::Drifting {
+                first_node: r,
+                n_nodes: nodes.len(),
+                free_dirs: dirs.join(" and "),
+                force: sum[r],
+                nodes,
             });
         }
     }
@@ -314,6 +370,10 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         history: Vec::new(),
         observer,
     };
+    // A part that nothing holds horizontally cannot balance a horizontal load: say so now
+    // instead of after hundreds of iterations of drift.
+    ctx.eval(1.0, false, false)?;
+    check_held_horizontally(model, &*ctx.prov, &ctx.sys.fext)?;
     let mut report = StaticReport::default();
     let t = settings.time;
     let mut mu = settings.stabilisation;

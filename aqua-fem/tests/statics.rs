@@ -286,7 +286,8 @@ fn free_floating_model_is_an_error() {
         Err(FemError::Unconstrained {
             first_node: 0,
             n_nodes: 3,
-        }) => {}
+            nodes,
+        }) => assert_eq!(nodes, [0, 1, 2]),
         other => panic!("{other:?}"),
     }
 }
@@ -605,4 +606,43 @@ fn integrators_hand_each_accepted_state_to_the_loads() {
         // Pushed by 200 N from rest, the bob passes 0.5 m before the quarter swing.
         assert!(switched_at.is_some(), "midpoint {midpoint}: never switched");
     }
+}
+
+/// A chain lying on the seabed with a horizontal point force and no fixed node has no static
+/// equilibrium (statics has no friction): a `Drifting` error at once, with the resultant; the
+/// vertical-only load on the same chain solves.
+#[test]
+fn a_part_held_only_vertically_and_pushed_sideways_is_an_error() {
+    let build = |fy: f64| {
+        let env = Environment {
+            seabed: Some(Seabed::new(1.0)),
+            ..Default::default()
+        };
+        let mut b = ModelBuilder::new(env);
+        let sec = CableSection::new(1e6, 2.0).with_contact(0.05);
+        let g = b.add_group("chain", sec).unwrap();
+        let nodes = add_line(&mut b, [0.0, 0.0, -1.0], [4.0, 0.0, -1.0], 4, 4.0, g, 0.0);
+        b.add_point_body(PointBody {
+            node: nodes[4],
+            mass: 0.0,
+            force: [0.0, fy, 0.0],
+            seabed_stiffness: 0.0,
+        })
+        .unwrap();
+        b.build().unwrap()
+    };
+    match solve_static(&build(3.0), &mut NoLoads, &StaticSettings::default()) {
+        Err(FemError::Drifting {
+            free_dirs,
+            force,
+            nodes,
+            ..
+        }) => {
+            assert_eq!(free_dirs, "y");
+            assert_eq!(force, [0.0, 3.0]);
+            assert_eq!(nodes.len(), 5);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(solve_static(&build(0.0), &mut NoLoads, &StaticSettings::default()).is_ok());
 }

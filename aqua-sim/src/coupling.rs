@@ -350,7 +350,13 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
                 } else {
                     let mut go_on =
                         |_: &aqua_fem::StaticProgress| aqua_fem::StaticControl::Continue;
-                    match static_equilibrium(model, &mut loads, &prep.plan.statics, &mut go_on) {
+                    match static_equilibrium(
+                        model,
+                        &prep.built.mesh,
+                        &mut loads,
+                        &prep.plan.statics,
+                        &mut go_on,
+                    ) {
                         Ok(s) => {
                             let f = point_forces(&prep, &s.outputs);
                             initial = Some((s.state, s.outputs));

@@ -68,8 +68,14 @@ pub enum SimError {
     #[error("{0}")]
     NonFinite(String),
     /// The static solve failed.
-    #[error("static equilibrium failed")]
-    Static(#[source] Box<aqua_fem::FemError>),
+    #[error("static equilibrium failed{parts}")]
+    Static {
+        /// The scene objects the failure is about (" (part: line 'm1', buoy 'b')"), or "".
+        parts: String,
+        /// What the solver said.
+        #[source]
+        source: Box<aqua_fem::FemError>,
+    },
     /// A time integrator could not start.
     #[error("starting the {0} solver")]
     StartDynamic(&'static str, #[source] Box<aqua_fem::FemError>),

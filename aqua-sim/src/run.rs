@@ -13,7 +13,10 @@ use crate::provider::WaterLoads;
 use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium};
 use aqua_env::Phase;
-use aqua_fem::{Energies, Outputs, State, StaticControl, StaticProgress, StepControl, StepReport};
+use aqua_fem::{
+    Energies, LinearSolverStats, Outputs, State, StaticControl, StaticProgress, StepControl,
+    StepReport,
+};
 use aqua_hydro::assembly::LoadAssembly;
 use std::time::Instant;
 
@@ -65,6 +68,8 @@ pub struct RunRecord {
     pub step_control: Option<StepControl>,
     /// The energy ledger at the end of the dynamic phase (implicit schemes).
     pub energies: Option<Energies>,
+    /// Counters of the dynamic phase's linear solves (implicit schemes).
+    pub linear_solver: Option<LinearSolverStats>,
 }
 
 impl RunRecord {
@@ -72,6 +77,7 @@ impl RunRecord {
     fn keep_ledgers(&mut self, solver: &dyn Stepper) {
         self.step_control = solver.step_control();
         self.energies = solver.energies();
+        self.linear_solver = solver.linear_solver_stats();
     }
 }
 
@@ -186,7 +192,13 @@ impl<'p> Simulation<'p> {
                     StaticControl::Continue
                 }
             };
-            let stat = static_equilibrium(model, &mut self.loads, &plan.statics, &mut progress)?;
+            let stat = static_equilibrium(
+                model,
+                &prep.built.mesh,
+                &mut self.loads,
+                &plan.statics,
+                &mut progress,
+            )?;
             for d in Diagnostic::warnings("fem/statics", "statics", &stat.report.warnings) {
                 obs.diagnostic(&d);
             }

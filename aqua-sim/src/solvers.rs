@@ -6,21 +6,72 @@ use crate::error::{Result, SimError};
 use crate::plan::Integrator;
 use crate::provider::WaterLoads;
 use aqua_fem::{
-    DynamicSolver, Energies, ExplicitSolver, Model, Outputs, State, StaticControl, StaticProgress,
-    StaticSettings, StaticSolution, StepControl, StepReport, solve_static_observed,
+    DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs, State,
+    StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl, StepReport,
+    solve_static_observed,
 };
+use aqua_mesh::{Mesh, ObjectKind};
 
 /// Static equilibrium of the model under the water loads (docs/theory/fem.md#static-solver).
 /// `progress` sees every Newton iteration and may stop the solve, which then returns the
 /// last accepted state with `report.interrupted`.
+/// A failure names the scene objects of the nodes it is about (`mesh` is the model's mesh).
 pub fn static_equilibrium(
     model: &Model,
+    mesh: &Mesh,
     loads: &mut WaterLoads,
     settings: &StaticSettings,
     progress: &mut dyn FnMut(&StaticProgress) -> StaticControl,
 ) -> Result<StaticSolution> {
-    solve_static_observed(model, loads, settings, progress)
-        .map_err(|e| SimError::Static(Box::new(e)))
+    solve_static_observed(model, loads, settings, progress).map_err(|e| {
+        let nodes: Vec<usize> = match &e {
+            FemError::Drifting { nodes, .. } | FemError::Unconstrained { nodes, .. } => {
+                nodes.clone()
+            }
+            FemError::StaticFailed(f) => vec![f.worst_node],
+            _ => Vec::new(),
+        };
+        SimError::Static {
+            parts: part_names(mesh, &nodes),
+            source: Box::new(e),
+        }
+    })
+}
+
+/// " (part: line 'm1', buoy 'b')": the objects owning `nodes`, in mesh order, at most six
+/// named; "" if none.
+pub(crate) fn part_names(mesh: &Mesh, nodes: &[usize]) -> String {
+    let mut objects: Vec<usize> = nodes
+        .iter()
+        .filter_map(|&i| mesh.node_owner.get(i).map(|o| o.0 as usize))
+        .collect();
+    objects.sort_unstable();
+    objects.dedup();
+    let names: Vec<String> = objects
+        .iter()
+        .filter_map(|&o| mesh.objects.get(o))
+        .map(|o| format!("{} '{}'", object_kind(&o.kind), o.name))
+        .collect();
+    match names.len() {
+        0 => String::new(),
+        1..=6 => format!(" (part: {})", names.join(", ")),
+        k => format!(
+            " (part: {} and {} more objects)",
+            names[..6].join(", "),
+            k - 6
+        ),
+    }
+}
+
+fn object_kind(k: &ObjectKind) -> &'static str {
+    match k {
+        ObjectKind::Cage(_) => "cage",
+        ObjectKind::Panel => "panel",
+        ObjectKind::Line => "line",
+        ObjectKind::Gmsh => "mesh",
+        ObjectKind::Buoy => "buoy",
+        ObjectKind::Frame => "farm frame",
+    }
 }
 
 /// What the run loop needs of a time integrator (HHT-α or explicit).
@@ -41,6 +92,10 @@ pub trait Stepper {
     }
     /// The energy ledger (HHT-α and the midpoint rule).
     fn energies(&self) -> Option<Energies> {
+        None
+    }
+    /// Counters of the implicit schemes' linear solves (factorisations, kept factors, …).
+    fn linear_solver_stats(&self) -> Option<LinearSolverStats> {
         None
     }
 }
@@ -66,6 +121,9 @@ impl Stepper for DynamicSolver<'_> {
     }
     fn energies(&self) -> Option<Energies> {
         Some(DynamicSolver::energies(self))
+    }
+    fn linear_solver_stats(&self) -> Option<LinearSolverStats> {
+        Some(DynamicSolver::linear_solver_stats(self))
     }
 }
 

@@ -68,6 +68,16 @@ fn a_bar_never_turns_over_through_its_anchor() {
             .contains("turned over"),
         "{control}"
     );
+    // Every Newton iteration solved one system, with a fresh or a kept factor.
+    let ls = &rj["linear_solver"];
+    let count = |k: &str| ls[k].as_u64().unwrap_or_else(|| panic!("{k} in {ls}"));
+    assert!(count("factorisations") >= 1, "{ls}");
+    assert!(
+        count("factorisations") + count("factor_reuses")
+            >= rj["newton_iterations"].as_u64().unwrap(),
+        "{ls} vs {} iterations",
+        rj["newton_iterations"]
+    );
 }
 
 /// A 10 m chain of 80 tension-only elements (EA 1e7 N, 1 kg/m) pinned at the top and released
@@ -131,4 +141,36 @@ fn a_net_panel_in_still_water_stays_at_rest() {
         tmax <= 1.05 * t0,
         "static twine tension {t0} N grew to {tmax} N in still water"
     );
+}
+
+/// A buoy on a line whose anchor end is not fixed, in a current: in statics (no seabed
+/// friction) nothing holds the part horizontally, so there is no equilibrium. The solve must
+/// say so before iterating, naming the objects; the same scene anchored solves.
+#[test]
+fn an_unanchored_buoy_line_in_a_current_stops_at_once_naming_it() {
+    let d = scratch("drift");
+    let scene = |fixed: &str| {
+        format!(
+            "[sea]\ndepth = 30.0\n[sea.current]\nkind = \"uniform\"\nvelocity = [0.5, 0.0, 0.0]\n\
+             [[buoy]]\nname = \"marker\"\nposition = [31.0, 0.0, 0.0]\ndiameter = 1.2\nmass = 150.0\n\
+             [[line]]\nname = \"mooring\"\nanchor = [0.0, 0.0, -29.0]\nfairlead = \"marker/buoy\"\n\
+             fixed = {fixed}\nlength = 43.0\nsegments = 43\ndiameter = 0.05\n\
+             mass_per_length = 5.0\nea = 2.0e8\n[analysis]\nkind = \"static\"\n"
+        )
+    };
+    let (_, err) = run(&d, "free", &scene("[]"));
+    let err = err.expect("an unanchored part in a current has no equilibrium");
+    for want in [
+        "buoy 'marker'",
+        "line 'mooring'",
+        "held only vertically",
+        "fixed in x,",
+        "would drift away",
+    ] {
+        assert!(err.contains(want), "missing {want:?} in: {err}");
+    }
+    assert!(!err.contains("iterations"), "it iterated first: {err}");
+    let (out, err) = run(&d, "anchored", &scene("[\"anchor\"]"));
+    assert!(err.is_none(), "{err:?}");
+    assert_eq!(run_json(&out)["status"], "completed");
 }

@@ -36,6 +36,7 @@ fn solve(name: &str, edit: impl Fn(String) -> String) -> Solved {
     let t0 = std::time::Instant::now();
     let sol = static_equilibrium(
         &prep.built.model,
+        &prep.built.mesh,
         &mut loads,
         &prep.plan.statics,
         &mut |_| StaticControl::Continue,

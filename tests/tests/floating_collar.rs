@@ -95,6 +95,7 @@ fn solve(dir: &Path, name: &str, text: &str) -> aqua_sim::Result<(Vec<[f64; 3]>,
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static)?;
     let sol = aqua_sim::solvers::static_equilibrium(
         &prep.built.model,
+        &prep.built.mesh,
         &mut loads,
         &prep.plan.statics,
         &mut |_| StaticControl::Continue,

@@ -230,6 +230,7 @@ fn run_json(
         "static_residual_history": &record.static_residuals,
         "step_control": &record.step_control,
         "energies": &record.energies,
+        "linear_solver": &record.linear_solver,
         "peak_tension_resolution": record.step_control.as_ref().map(|c| c.peak_tension_resolution()),
         "time_per_step_s": if record.steps > 0 { record.dyn_wall / record.steps as f64 } else { 0.0 },
     })
