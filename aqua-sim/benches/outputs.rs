@@ -4,7 +4,9 @@
 //!   (examples/reference-cage.toml: 1057 nodes, 1920 cable elements, 672 panels) written by
 //!   [`RunFiles::write_step`] — the blocks, the `.vtm`, the `.pvd` entry and a `summary.csv`
 //!   row — from frames captured in a short run (statics, then 1 s of dynamics). Target: ≤ 10 %
-//!   of a dynamic step (~11 ms).
+//!   of a dynamic step (5 ms). `write_step` measures steps written back to back (the
+//!   writer thread's throughput), `write_step_handover` what the run loop pays per step when
+//!   the steps are apart in time, as in a run (the rest is done by the writer thread).
 //! * `mooring_chain_60s`: the whole `aqua run` of examples/mooring-chain.toml with
 //!   `output_interval = 0.1` (601 output steps), with the files written and without any output.
 //!
@@ -103,6 +105,7 @@ fn bench(c: &mut Criterion) {
     let mut files = RunFiles::create(&dir, &prep.scene.name, &prep.built).unwrap();
     let (s, o, w, row) = &frames[0];
     files.write_step(&prep.built, s, o, w, row).unwrap();
+    files.flush().unwrap();
     let step_dir = dir.join(format!("{}_000000", prep.scene.name));
     eprintln!(
         "reference cage: one output step = {} bytes ({} in the block files)",
@@ -116,6 +119,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(20);
     g.measurement_time(Duration::from_secs(10));
     let mut t = 1.0;
+    // Back to back: the writer thread's throughput (the run loop waits on the full queue).
     g.bench_function("reference_cage/write_step", |b| {
         b.iter_custom(|k| {
             // A fresh series every batch keeps the directory (and .pvd) to k steps.
@@ -130,6 +134,25 @@ fn bench(c: &mut Criterion) {
             }
             drop(files);
             start.elapsed()
+        })
+    });
+    // What the run loop pays per output step when the solver keeps the writer ahead (the
+    // steps are apart in time, as in a run): the checks, the copy and the hand-over only.
+    g.bench_function("reference_cage/write_step_handover", |b| {
+        b.iter_custom(|k| {
+            let mut files = RunFiles::create(&dir, &prep.scene.name, &prep.built).unwrap();
+            let mut spent = Duration::ZERO;
+            for i in 0..k as usize {
+                let (s, o, w, row) = &frames[i % frames.len()];
+                let mut s = s.clone();
+                t += 0.1;
+                s.t = t;
+                let start = Instant::now();
+                files.write_step(&prep.built, &s, o, w, row).unwrap();
+                spent += start.elapsed();
+                files.flush().unwrap();
+            }
+            spent
         })
     });
     g.finish();

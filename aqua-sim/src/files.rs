@@ -11,6 +11,15 @@
 //! least every [`CSV_FLUSH_INTERVAL`] of wall time and by [`RunFiles::flush`] (which the end
 //! of a run, an interruption or a failure calls, and dropping [`RunFiles`] does too).
 //!
+//! **The files are written by a background thread** (docs/theory/fem.md#outputs): the run
+//! loop checks a step's arrays for non-finite values, copies them and hands them over, and
+//! goes on with the next time step while the thread encodes and writes them. At most
+//! [`QUEUE_STEPS`] steps wait, so a disk slower than the solver slows the run instead of
+//! filling memory. The thread writes the steps in order with the same guarantees as above.
+//! [`RunFiles::flush`], [`RunFiles::steps_written`] and dropping wait until every handed-over
+//! step is on disk, so what an ended, interrupted or failed run reports was written; a write
+//! error is returned by the next call.
+//!
 //! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
 //! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
 //! (1 where a DOF is fixed or prescribed); lines: `tension`
@@ -23,10 +32,13 @@ use crate::build::Built;
 use crate::error::{Result, SimError};
 use crate::post::SummaryRow;
 use aqua_fem::{Outputs, State};
-use aqua_mesh::{BlockArray, MultiblockSeries, NameTables, StepArrays};
+use aqua_mesh::{BlockArray, Mesh, MultiblockSeries, NameTables, StepArrays};
 use nalgebra::Point3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, SyncSender};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
 
 /// The pvpython script written next to every run (`DIR/open_in_paraview.py`).
 pub const PARAVIEW_SCRIPT: &str = include_str!("open_in_paraview.py");
@@ -34,21 +46,103 @@ pub const PARAVIEW_SCRIPT: &str = include_str!("open_in_paraview.py");
 /// Longest wall time a `summary.csv` row stays in memory while a run goes on.
 pub const CSV_FLUSH_INTERVAL: std::time::Duration = std::time::Duration::from_secs(1);
 
+/// Output steps that may wait for the writer thread (each holds a copy of one step's arrays).
+pub const QUEUE_STEPS: usize = 2;
+
 /// Writers of one run.
 #[derive(Debug)]
 pub struct RunFiles {
     dir: PathBuf,
-    series: MultiblockSeries,
+    pvd_path: PathBuf,
+    names: NameTables,
     /// Point mass per node [kg] (point bodies incl. weights W/g), the same every step.
     point_mass: Vec<f64>,
     /// 1 where a node has a fixed or prescribed DOF (builders, `[[fix]]`, `[[prescribed]]`).
     supported: Vec<i32>,
+    /// To the writer thread (`None` once closed).
+    tx: Option<SyncSender<Job>>,
+    thread: Option<JoinHandle<()>>,
+    /// Steps written and the first write error, kept by the writer thread.
+    shared: Arc<Mutex<Written>>,
+}
+
+/// What the writer thread reports.
+#[derive(Debug, Default)]
+struct Written {
+    steps: usize,
+    error: Option<SimError>,
+}
+
+/// Work for the writer thread.
+enum Job {
+    Step(Box<StepJob>),
+    /// Flush `summary.csv` and answer once every earlier job is done.
+    Sync(std::sync::mpsc::Sender<()>),
+}
+
+/// One output step, owned.
+struct StepJob {
+    t: f64,
+    positions: Vec<Point3<f64>>,
+    arrays: StepArrays,
+    csv_line: String,
+}
+
+/// The writer thread's side: the series and `summary.csv`.
+struct Disk {
+    series: MultiblockSeries,
+    mesh: Arc<Mesh>,
     csv: std::io::BufWriter<std::fs::File>,
     csv_path: PathBuf,
     /// When `summary.csv` was last flushed.
     csv_flushed: std::time::Instant,
-    /// Output steps written.
-    pub steps_written: usize,
+}
+
+impl Disk {
+    /// Writes jobs in order until the channel closes; after an error, only answers syncs.
+    fn serve(mut self, rx: Receiver<Job>, shared: Arc<Mutex<Written>>) {
+        let mut failed = false;
+        for job in rx {
+            match job {
+                Job::Step(step) if !failed => {
+                    let r = self.write(&step);
+                    let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
+                    match r {
+                        Ok(()) => w.steps += 1,
+                        Err(e) => {
+                            w.error = Some(e);
+                            failed = true;
+                        }
+                    }
+                }
+                Job::Step(_) => {}
+                Job::Sync(done) => {
+                    if let Err(e) = self.flush_csv() {
+                        let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
+                        w.error.get_or_insert(e);
+                    }
+                    let _ = done.send(());
+                }
+            }
+        }
+        let _ = self.flush_csv();
+    }
+
+    fn write(&mut self, step: &StepJob) -> Result<()> {
+        self.series
+            .write_step(step.t, &self.mesh, &step.positions, &step.arrays)
+            .map_err(|e| SimError::Output(Box::new(e)))?;
+        writeln!(self.csv, "{}", step.csv_line).map_err(io("writing", &self.csv_path))?;
+        if self.csv_flushed.elapsed() >= CSV_FLUSH_INTERVAL {
+            self.flush_csv()?;
+        }
+        Ok(())
+    }
+
+    fn flush_csv(&mut self) -> Result<()> {
+        self.csv_flushed = std::time::Instant::now();
+        self.csv.flush().map_err(io("writing", &self.csv_path))
+    }
 }
 
 fn io(what: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> SimError {
@@ -88,21 +182,38 @@ impl RunFiles {
         writeln!(csv, "{}", SummaryRow::columns(built).join(","))
             .and_then(|_| csv.flush())
             .map_err(io("writing", &path))?;
-        Ok(Self {
-            dir: dir.to_path_buf(),
+        let (pvd_path, names) = (series.pvd_path().to_path_buf(), series.names().clone());
+        let disk = Disk {
             series,
-            point_mass,
-            supported,
+            mesh: Arc::new(built.mesh.clone()),
             csv,
             csv_path: path,
             csv_flushed: std::time::Instant::now(),
-            steps_written: 0,
+        };
+        let shared = Arc::new(Mutex::new(Written::default()));
+        let (tx, rx) = std::sync::mpsc::sync_channel(QUEUE_STEPS);
+        let thread = {
+            let shared = Arc::clone(&shared);
+            std::thread::Builder::new()
+                .name("aqua-output".into())
+                .spawn(move || disk.serve(rx, shared))
+                .map_err(io("starting the output writer for", dir))?
+        };
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            pvd_path,
+            names,
+            point_mass,
+            supported,
+            tx: Some(tx),
+            thread: Some(thread),
+            shared,
         })
     }
 
     /// The `.pvd` path.
     pub fn pvd_path(&self) -> PathBuf {
-        self.series.pvd_path().to_path_buf()
+        self.pvd_path.clone()
     }
 
     /// The output directory.
@@ -112,7 +223,7 @@ impl RunFiles {
 
     /// Object, group, role and block names (the field data of every block; `run.json`).
     pub fn names(&self) -> &NameTables {
-        self.series.names()
+        &self.names
     }
 
     /// Writes one output step: the blocks, the `.vtm` (and `.pvd` line) and a `summary.csv` row.
@@ -174,22 +285,65 @@ impl RunFiles {
             ],
             panel: vec![BlockArray::scalar("wake_factor", wake_panels.to_vec())],
         };
-        self.series
-            .write_step(state.t, mesh, &positions, &arrays)
-            .map_err(|e| SimError::Output(Box::new(e)))?;
-        let line: Vec<String> = row.values_text();
-        writeln!(self.csv, "{}", line.join(",")).map_err(io("writing", &self.csv_path))?;
-        self.steps_written += 1;
-        if self.csv_flushed.elapsed() >= CSV_FLUSH_INTERVAL {
-            self.flush()?;
+        self.take_error()?;
+        let job = Job::Step(Box::new(StepJob {
+            t: state.t,
+            positions,
+            arrays,
+            csv_line: row.values_text().join(","),
+        }));
+        if self.tx.as_ref().is_none_or(|tx| tx.send(job).is_err()) {
+            return Err(self.writer_gone());
         }
         Ok(())
     }
 
-    /// Writes the buffered `summary.csv` rows to the file.
+    /// Waits until every handed-over step is written and `summary.csv` is flushed; returns
+    /// the first write error.
     pub fn flush(&mut self) -> Result<()> {
-        self.csv_flushed = std::time::Instant::now();
-        self.csv.flush().map_err(io("writing", &self.csv_path))
+        self.sync();
+        self.take_error()
+    }
+
+    /// Output steps on disk (after waiting for those handed over).
+    pub fn steps_written(&self) -> usize {
+        self.sync();
+        self.shared.lock().unwrap_or_else(|e| e.into_inner()).steps
+    }
+
+    fn sync(&self) {
+        let (done_tx, done_rx) = std::sync::mpsc::channel();
+        if let Some(tx) = &self.tx
+            && tx.send(Job::Sync(done_tx)).is_ok()
+        {
+            let _ = done_rx.recv();
+        }
+    }
+
+    fn take_error(&mut self) -> Result<()> {
+        let e = self
+            .shared
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .error
+            .take();
+        match e {
+            Some(e) => {
+                self.tx = None;
+                Err(e)
+            }
+            None => Ok(()),
+        }
+    }
+
+    /// The error when the writer thread is no longer there (it panicked).
+    fn writer_gone(&mut self) -> SimError {
+        self.tx = None;
+        SimError::Io {
+            what: "writing (the output writer stopped)",
+            path: self.pvd_path.clone(),
+            source: std::io::Error::other("output writer thread ended"),
+        }
     }
 
     /// Writes `run.json` atomically.
@@ -201,6 +355,16 @@ impl RunFiles {
         std::fs::write(&tmp, text).map_err(io("writing", &tmp))?;
         std::fs::rename(&tmp, &path).map_err(io("writing", &path))?;
         Ok(())
+    }
+}
+
+impl Drop for RunFiles {
+    /// Closes the queue and waits until the writer thread has written what it holds.
+    fn drop(&mut self) {
+        self.tx = None;
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
     }
 }
 

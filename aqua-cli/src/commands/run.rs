@@ -154,11 +154,11 @@ pub fn run_scene(
     };
     let (mut record, result) = sim.run(&mut term);
     term.bar.finish_and_clear();
-    record.wall = t0.elapsed().as_secs_f64();
     let mut files = term.files;
-    // The summary rows still buffered: written whether the run completed, was interrupted or
-    // failed.
+    // The steps still queued for the writer and the summary rows still buffered: written
+    // whether the run completed, was interrupted or failed.
     files.flush()?;
+    record.wall = t0.elapsed().as_secs_f64();
     print_step_control(&record);
     let mut json = run_json(&prep, &record, &result, &files);
     json["diagnostics"] = serde_json::json!(term.diagnostics);
@@ -175,7 +175,7 @@ pub fn run_scene(
             eprintln!(
                 "interrupted at t = {} s: {} output steps kept in {}",
                 record.last.as_ref().map(|r| r.t).unwrap_or(0.0),
-                files.steps_written,
+                files.steps_written(),
                 files.pvd_path().display()
             );
             Ok(Ending::Interrupted)
@@ -186,7 +186,7 @@ pub fn run_scene(
         .with_context(|| {
             format!(
                 "the run stopped; {} output steps written before the failure are kept in {}",
-                files.steps_written,
+                files.steps_written(),
                 files.pvd_path().display()
             )
         }),
@@ -218,7 +218,7 @@ fn run_json(
         "status": record.ending.as_str(),
         "error": result.as_ref().err().map(|e| e.chain()),
         "final": record.last,
-        "output_steps": files.steps_written,
+        "output_steps": files.steps_written(),
         "pvd": files.pvd_path(),
         "paraview_script": files.dir().join("open_in_paraview.py"),
         "names": files.names(),
@@ -278,7 +278,7 @@ fn print_final(files: &RunFiles, r: &RunRecord) {
     }
     println!(
         "{} output steps in {}; wall time {:.2} s{}",
-        files.steps_written,
+        files.steps_written(),
         files.dir().display(),
         r.wall,
         if r.steps > 0 {
