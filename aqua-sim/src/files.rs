@@ -7,8 +7,9 @@
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
 //! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
-//! for what holds when the process stops). `summary.csv` rows are buffered and flushed at
-//! least every [`CSV_FLUSH_INTERVAL`] of wall time and by [`RunFiles::flush`] (which the end
+//! for what holds when the process stops). `summary.csv` rows are buffered and flushed after
+//! a step once [`CSV_FLUSH_INTERVAL`] of wall time has passed (not between steps) and by
+//! [`RunFiles::flush`] (which the end
 //! of a run, an interruption or a failure calls, and dropping [`RunFiles`] does too).
 //!
 //! **The files are written by a background thread** (docs/theory/fem.md#outputs): the run
@@ -18,7 +19,8 @@
 //! filling memory. The thread writes the steps in order with the same guarantees as above.
 //! [`RunFiles::flush`], [`RunFiles::steps_written`] and dropping wait until every handed-over
 //! step is on disk, so what an ended, interrupted or failed run reports was written; a write
-//! error is returned by the next call.
+//! error is returned by the next call only (later calls report the writer as ended, and a
+//! write error found by the final flush is not yet recorded in `run.json`: known gaps).
 //!
 //! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
 //! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
