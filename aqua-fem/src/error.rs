@@ -46,15 +46,17 @@ pub enum FemError {
         /// Every node of the component (for naming it).
         nodes: Vec<usize>,
     },
-    /// A connected part held only vertically (seabed contact, buoyancy; no node fixed in x
-    /// or y, and statics has no seabed friction) carries loads with a horizontal resultant at
-    /// the as-built position: it has no static equilibrium, the loads carry it away.
+    /// A connected part with no node fixed in x (or in y) carries loads with a resultant
+    /// along that axis at the as-built position. Nothing else holds a part horizontally in
+    /// statics (seabed contact and buoyancy act vertically, statics has no seabed friction):
+    /// it has no static equilibrium, the loads carry it away.
     #[error(
-        "the part of the structure containing node {first_node} ({n_nodes} nodes) is held only \
-         vertically (seabed contact or buoyancy; no node of it is fixed in {free_dirs}, and statics \
-         has no seabed friction), but the loads on it push it horizontally with \
-         [{:.4e}, {:.4e}] N: it has no static equilibrium and would drift away; anchor it (fix a \
-         node, e.g. a line's `fixed = [\"anchor\"]`) or attach it to a held part",
+        "the part of the structure containing node {first_node} ({n_nodes} nodes) has no node \
+         fixed in {free_dirs}, and nothing else holds it along {free_dirs} in statics (seabed \
+         contact and buoyancy act vertically; statics has no seabed friction), but the loads on \
+         it push it horizontally with [{:.4e}, {:.4e}] N: it has no static equilibrium and \
+         would drift away; anchor it (fix a node, e.g. a line's `fixed = [\"anchor\"]`) or \
+         attach it to a held part",
         force[0],
         force[1]
     )]

@@ -111,8 +111,11 @@ pub trait LoadProvider: Sync {
         want: Want,
         out: &mut ElementLoad,
     ) -> Result<(), LoadError>;
-    /// Marks nodes on which the provider exerts a position-dependent restoring force (e.g.
-    /// buoyancy), so that a part held only by such loads is not reported as unsupported.
+    /// Marks nodes on which the provider exerts a position-dependent *vertical* restoring
+    /// force (buoyancy that changes with the draft), so that a part held only by such loads
+    /// is not reported as unsupported. Statics assumes that no provider load restores
+    /// horizontally: a part with no node fixed in x (or y) whose loads push it along x (or
+    /// y) is reported as drifting ([`crate::FemError::Drifting`]).
     fn mark_restoring_nodes(&self, held: &mut [bool]) {
         let _ = held;
     }

@@ -262,9 +262,11 @@ pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider:
 }
 
 /// Parts with no node fixed in x (or y) whose external loads `fext` (evaluated at the
-/// as-built position) have a horizontal resultant in that direction: nothing can balance it
-/// in statics, which has no seabed friction (docs/theory/fem.md#static-solver). A resultant
-/// below 1e-6 of the part's Σ|f| is round-off.
+/// as-built position) have a resultant along that axis: nothing can balance it in statics,
+/// where only fixed DOFs act horizontally (seabed contact and buoyancy are vertical, no
+/// seabed friction; docs/theory/fem.md#static-solver). Each axis is judged alone: a part
+/// fixed in y only and pushed along x drifts along x. A resultant below 1e-6 of the part's
+/// Σ|f| is round-off.
 fn check_held_horizontally<P: LoadProvider + ?Sized>(
     model: &Model,
     provider: &P,

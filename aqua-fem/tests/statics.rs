@@ -646,3 +646,56 @@ fn a_part_held_only_vertically_and_pushed_sideways_is_an_error() {
     }
     assert!(solve_static(&build(0.0), &mut NoLoads, &StaticSettings::default()).is_ok());
 }
+
+/// The drift check judges each horizontal axis alone: the same chain with its first node
+/// fixed in y only (a roller along x) drifts when pushed along x (nothing holds x), and is not
+/// reported as drifting when pushed along y (the roller takes it).
+#[test]
+fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
+    let build = |f: [f64; 3]| {
+        let env = Environment {
+            seabed: Some(Seabed::new(1.0)),
+            ..Default::default()
+        };
+        let mut b = ModelBuilder::new(env);
+        let sec = CableSection::new(1e6, 2.0).with_contact(0.05);
+        let g = b.add_group("chain", sec).unwrap();
+        let nodes = add_line(&mut b, [0.0, 0.0, -1.0], [4.0, 0.0, -1.0], 4, 4.0, g, 0.0);
+        let roller = Dofs {
+            x: false,
+            y: true,
+            z: false,
+        };
+        b.fix(nodes[0], roller).unwrap();
+        b.add_point_body(PointBody {
+            node: nodes[4],
+            mass: 0.0,
+            force: f,
+            seabed_stiffness: 0.0,
+        })
+        .unwrap();
+        b.build().unwrap()
+    };
+    match solve_static(
+        &build([2.0, 0.0, 0.0]),
+        &mut NoLoads,
+        &StaticSettings::default(),
+    ) {
+        Err(FemError::Drifting {
+            free_dirs, force, ..
+        }) => {
+            assert_eq!(free_dirs, "x");
+            assert_eq!(force, [2.0, 0.0]);
+        }
+        other => panic!("{other:?}"),
+    }
+    let along_y = solve_static(
+        &build([0.0, 2.0, 0.0]),
+        &mut NoLoads,
+        &StaticSettings::default(),
+    );
+    assert!(
+        !matches!(along_y, Err(FemError::Drifting { .. })),
+        "{along_y:?}"
+    );
+}

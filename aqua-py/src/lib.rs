@@ -165,11 +165,11 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<O
         tensions: Vec::new(),
     };
     let (record, result) = sim.run(&mut c);
-    // The buffered summary rows, also after an interruption or a failure.
-    if let Some(files) = &mut c.files {
-        files.flush()?;
-    }
+    // The buffered summary rows, also after an interruption or a failure; the run's own
+    // error is raised first.
+    let flushed = c.files.as_mut().map_or(Ok(()), RunFiles::flush);
     result?;
+    flushed?;
     if record.ending == aqua_sim::Ending::Interrupted {
         return Ok(None);
     }

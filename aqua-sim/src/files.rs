@@ -8,9 +8,9 @@
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
 //! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
 //! for what holds when the process stops). `summary.csv` rows are buffered and flushed after
-//! a step once [`CSV_FLUSH_INTERVAL`] of wall time has passed (not between steps) and by
-//! [`RunFiles::flush`] (which the end
-//! of a run, an interruption or a failure calls, and dropping [`RunFiles`] does too).
+//! at most [`CSV_FLUSH_INTERVAL`] of wall time after they were written (also while no further
+//! step arrives) and by [`RunFiles::flush`] (which the end of a run, an interruption or a
+//! failure calls, and dropping [`RunFiles`] does too).
 //!
 //! **The files are written by a background thread** (docs/theory/fem.md#outputs): the run
 //! loop checks a step's arrays for non-finite values, copies them and hands them over, and
@@ -18,9 +18,9 @@
 //! [`QUEUE_STEPS`] steps wait, so a disk slower than the solver slows the run instead of
 //! filling memory. The thread writes the steps in order with the same guarantees as above.
 //! [`RunFiles::flush`], [`RunFiles::steps_written`] and dropping wait until every handed-over
-//! step is on disk, so what an ended, interrupted or failed run reports was written; a write
-//! error is returned by the next call only (later calls report the writer as ended, and a
-//! write error found by the final flush is not yet recorded in `run.json`: known gaps).
+//! step is on disk, so what an ended, interrupted or failed run reports was written. The first
+//! write error (or a panic of the writer thread, with its message) is returned by the next
+//! call, and every later call fails with the same message; no step after it is written.
 //!
 //! Arrays of a step (docs/theory/fem.md#outputs) — points: `displacement` (x − X from the
 //! as-built position X), `velocity`, `hydro_force`, `reaction`, `point_mass`, `supported`
@@ -38,7 +38,7 @@ use aqua_mesh::{BlockArray, Mesh, MultiblockSeries, NameTables, StepArrays};
 use nalgebra::Point3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::{Receiver, SyncSender};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
@@ -66,6 +66,8 @@ pub struct RunFiles {
     thread: Option<JoinHandle<()>>,
     /// Steps written and the first write error, kept by the writer thread.
     shared: Arc<Mutex<Written>>,
+    /// The first write error once it was returned: every later call fails with it.
+    failed: Option<String>,
 }
 
 /// What the writer thread reports.
@@ -98,13 +100,33 @@ struct Disk {
     csv_path: PathBuf,
     /// When `summary.csv` was last flushed.
     csv_flushed: std::time::Instant,
+    /// Rows written since.
+    csv_dirty: bool,
 }
 
 impl Disk {
     /// Writes jobs in order until the channel closes; after an error, only answers syncs.
+    /// Rows of `summary.csv` still buffered [`CSV_FLUSH_INTERVAL`] after they were written
+    /// are flushed even when no further step arrives.
     fn serve(mut self, rx: Receiver<Job>, shared: Arc<Mutex<Written>>) {
         let mut failed = false;
-        for job in rx {
+        loop {
+            let job = if self.csv_dirty {
+                let wait = CSV_FLUSH_INTERVAL.saturating_sub(self.csv_flushed.elapsed());
+                match rx.recv_timeout(wait) {
+                    Ok(job) => job,
+                    Err(RecvTimeoutError::Timeout) => {
+                        self.flush_csv_into(&shared);
+                        continue;
+                    }
+                    Err(RecvTimeoutError::Disconnected) => break,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(job) => job,
+                    Err(_) => break,
+                }
+            };
             match job {
                 Job::Step(step) if !failed => {
                     let r = self.write(&step);
@@ -112,22 +134,27 @@ impl Disk {
                     match r {
                         Ok(()) => w.steps += 1,
                         Err(e) => {
-                            w.error = Some(e);
+                            w.error.get_or_insert(e);
                             failed = true;
                         }
                     }
                 }
                 Job::Step(_) => {}
                 Job::Sync(done) => {
-                    if let Err(e) = self.flush_csv() {
-                        let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
-                        w.error.get_or_insert(e);
-                    }
+                    self.flush_csv_into(&shared);
                     let _ = done.send(());
                 }
             }
         }
-        let _ = self.flush_csv();
+        self.flush_csv_into(&shared);
+    }
+
+    /// Flushes `summary.csv`, keeping the first error for the run loop.
+    fn flush_csv_into(&mut self, shared: &Mutex<Written>) {
+        if let Err(e) = self.flush_csv() {
+            let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
+            w.error.get_or_insert(e);
+        }
     }
 
     fn write(&mut self, step: &StepJob) -> Result<()> {
@@ -135,6 +162,7 @@ impl Disk {
             .write_step(step.t, &self.mesh, &step.positions, &step.arrays)
             .map_err(|e| SimError::Output(Box::new(e)))?;
         writeln!(self.csv, "{}", step.csv_line).map_err(io("writing", &self.csv_path))?;
+        self.csv_dirty = true;
         if self.csv_flushed.elapsed() >= CSV_FLUSH_INTERVAL {
             self.flush_csv()?;
         }
@@ -143,6 +171,7 @@ impl Disk {
 
     fn flush_csv(&mut self) -> Result<()> {
         self.csv_flushed = std::time::Instant::now();
+        self.csv_dirty = false;
         self.csv.flush().map_err(io("writing", &self.csv_path))
     }
 }
@@ -191,6 +220,7 @@ impl RunFiles {
             csv,
             csv_path: path,
             csv_flushed: std::time::Instant::now(),
+            csv_dirty: false,
         };
         let shared = Arc::new(Mutex::new(Written::default()));
         let (tx, rx) = std::sync::mpsc::sync_channel(QUEUE_STEPS);
@@ -210,6 +240,7 @@ impl RunFiles {
             tx: Some(tx),
             thread: Some(thread),
             shared,
+            failed: None,
         })
     }
 
@@ -295,16 +326,22 @@ impl RunFiles {
             csv_line: row.values_text().join(","),
         }));
         if self.tx.as_ref().is_none_or(|tx| tx.send(job).is_err()) {
+            // A write error found meanwhile explains the closed queue better.
+            self.take_error()?;
             return Err(self.writer_gone());
         }
         Ok(())
     }
 
     /// Waits until every handed-over step is written and `summary.csv` is flushed; returns
-    /// the first write error.
+    /// the first write error (also on every call after it).
     pub fn flush(&mut self) -> Result<()> {
-        self.sync();
-        self.take_error()
+        let answered = self.sync();
+        self.take_error()?;
+        if !answered {
+            return Err(self.writer_gone());
+        }
+        Ok(())
     }
 
     /// Output steps on disk (after waiting for those handed over).
@@ -313,16 +350,20 @@ impl RunFiles {
         self.shared.lock().unwrap_or_else(|e| e.into_inner()).steps
     }
 
-    fn sync(&self) {
+    /// Waits for the writer thread to finish what it was given; false when it is not there.
+    fn sync(&self) -> bool {
         let (done_tx, done_rx) = std::sync::mpsc::channel();
-        if let Some(tx) = &self.tx
-            && tx.send(Job::Sync(done_tx)).is_ok()
-        {
-            let _ = done_rx.recv();
+        match &self.tx {
+            Some(tx) if tx.send(Job::Sync(done_tx)).is_ok() => done_rx.recv().is_ok(),
+            _ => false,
         }
     }
 
+    /// The write error, first as found, then as the same message on every later call.
     fn take_error(&mut self) -> Result<()> {
+        if let Some(msg) = &self.failed {
+            return Err(self.earlier_failure(msg.clone()));
+        }
         let e = self
             .shared
             .lock()
@@ -332,19 +373,41 @@ impl RunFiles {
         match e {
             Some(e) => {
                 self.tx = None;
+                self.failed = Some(e.chain());
                 Err(e)
             }
             None => Ok(()),
         }
     }
 
-    /// The error when the writer thread is no longer there (it panicked).
+    fn earlier_failure(&self, msg: String) -> SimError {
+        SimError::Io {
+            what: "writing (an earlier output step failed, later steps are not written)",
+            path: self.pvd_path.clone(),
+            source: std::io::Error::other(msg),
+        }
+    }
+
+    /// The error when the writer thread is no longer there: it panicked (its message is
+    /// reported), and no later step is written.
     fn writer_gone(&mut self) -> SimError {
         self.tx = None;
+        let why = match self.thread.take().map(JoinHandle::join) {
+            Some(Err(payload)) => {
+                let text = payload
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| payload.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "no message".into());
+                format!("the output writer thread panicked: {text}")
+            }
+            _ => "the output writer thread ended".to_string(),
+        };
+        self.failed = Some(why.clone());
         SimError::Io {
             what: "writing (the output writer stopped)",
             path: self.pvd_path.clone(),
-            source: std::io::Error::other("output writer thread ended"),
+            source: std::io::Error::other(why),
         }
     }
 
@@ -426,4 +489,118 @@ pub fn write_kinematics(
         }
     }
     std::fs::write(path, f).map_err(io("writing", path))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Frame, Observer, Prescribed, Simulation, prepare_scene, scene::parse_scene};
+
+    /// One output frame, owned: state, outputs, wake factors, summary row.
+    type Kept = (State, Outputs, Vec<f64>, SummaryRow);
+
+    /// A short static+dynamic run of a 10-segment chain: its output frames, kept.
+    fn frames() -> (crate::Prepared, Vec<Kept>) {
+        let text = r#"
+            name = "chain"
+            [sea]
+            depth = 50.0
+            [[line]]
+            name = "chain"
+            anchor = [0.0, 0.0, -50.0]
+            fairlead = [100.0, 0.0, -5.0]
+            length = 120.0
+            segments = 10
+            diameter = 0.1354
+            mass_per_length = 113.0
+            ea = 5.4e8
+            [analysis]
+            kind = "static+dynamic"
+            [analysis.dynamic]
+            dt = 0.1
+            t_end = 0.3
+            output_interval = 0.1
+        "#;
+        let scene = parse_scene(text, Path::new("chain.toml")).unwrap();
+        let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+        struct Keep(Vec<Kept>);
+        impl Observer for Keep {
+            fn frame(&mut self, f: &Frame<'_>) -> Result<()> {
+                let row = f.row.clone();
+                self.0
+                    .push((f.state.clone(), f.outputs.clone(), f.wake.to_vec(), row));
+                Ok(())
+            }
+        }
+        let mut keep = Keep(Vec::new());
+        let (_, result) = Simulation::new(&prep).unwrap().run(&mut keep);
+        result.unwrap();
+        assert!(keep.0.len() >= 3, "{} frames", keep.0.len());
+        (prep, keep.0)
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("aqua-files-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        d
+    }
+
+    #[test]
+    fn a_write_error_is_returned_and_every_later_call_fails_with_it() {
+        let (prep, frames) = frames();
+        let dir = scratch("error");
+        let mut files = RunFiles::create(&dir, "chain", &prep.built).unwrap();
+        let (s, o, w, r) = &frames[0];
+        files.write_step(&prep.built, s, o, w, r).unwrap();
+        files.flush().unwrap();
+        assert_eq!(files.steps_written(), 1);
+        // The output directory replaced by a file: the next step cannot be written.
+        std::fs::remove_dir_all(&dir).unwrap();
+        std::fs::write(&dir, "not a directory").unwrap();
+        let (s, o, w, r) = &frames[1];
+        // Handed over; the error comes from the writer thread, at the next call.
+        let _ = files.write_step(&prep.built, s, o, w, r);
+        let first = files
+            .flush()
+            .expect_err("the failed step is reported")
+            .chain();
+        let again = files.flush().expect_err("still failed").chain();
+        assert!(again.contains("earlier output step failed"), "{again}");
+        assert!(again.contains(&first), "{again} / {first}");
+        let (s, o, w, r) = &frames[2];
+        let later = files
+            .write_step(&prep.built, s, o, w, r)
+            .expect_err("not written")
+            .chain();
+        assert!(later.contains(&first), "{later}");
+        assert_eq!(files.steps_written(), 1, "only the step before the error");
+        drop(files);
+        std::fs::remove_file(&dir).unwrap();
+    }
+
+    #[test]
+    fn summary_rows_reach_the_file_without_a_flush_or_a_further_step() {
+        let (prep, frames) = frames();
+        let dir = scratch("csv");
+        let mut files = RunFiles::create(&dir, "chain", &prep.built).unwrap();
+        for (s, o, w, r) in &frames {
+            files.write_step(&prep.built, s, o, w, r).unwrap();
+        }
+        let rows = || {
+            std::fs::read_to_string(dir.join("summary.csv"))
+                .unwrap()
+                .lines()
+                .count()
+        };
+        // Waits (up to 10 flush intervals) for the time-based flush; nothing else writes.
+        let start = std::time::Instant::now();
+        while rows() < frames.len() + 1 && start.elapsed() < 10 * CSV_FLUSH_INTERVAL {
+            std::thread::sleep(CSV_FLUSH_INTERVAL / 10);
+        }
+        assert_eq!(rows(), frames.len() + 1, "header and one row per step");
+        files.flush().unwrap();
+        assert_eq!(files.steps_written(), frames.len());
+        drop(files);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

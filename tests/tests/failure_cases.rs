@@ -163,8 +163,8 @@ fn an_unanchored_buoy_line_in_a_current_stops_at_once_naming_it() {
     for want in [
         "buoy 'marker'",
         "line 'mooring'",
-        "held only vertically",
-        "fixed in x,",
+        "no node fixed in x,",
+        "nothing else holds it along x in statics",
         "would drift away",
     ] {
         assert!(err.contains(want), "missing {want:?} in: {err}");

@@ -203,4 +203,10 @@ fn rigid_reference_cage_drag_is_the_sum_of_its_panels() {
         row["Fx_net"]
     );
     assert!(row["Fy_net"].abs() < 1e-9 * fx);
+    // The supports also hold the drag of the frame ropes, which Fx_net does not count.
+    assert!(
+        -row["Rx"] > fx,
+        "reaction {} does not exceed the net drag {fx}",
+        row["Rx"]
+    );
 }

@@ -152,12 +152,19 @@ pub fn run_scene(
         quiet: a.quiet,
         diagnostics,
     };
-    let (mut record, result) = sim.run(&mut term);
+    let (mut record, mut result) = sim.run(&mut term);
     term.bar.finish_and_clear();
     let mut files = term.files;
     // The steps still queued for the writer and the summary rows still buffered: written
-    // whether the run completed, was interrupted or failed.
-    files.flush()?;
+    // whether the run completed, was interrupted or failed. A write error found here fails
+    // the run (a solver error found first stays the run's error) and run.json says so.
+    if let Err(e) = files.flush() {
+        term.diagnostics.push(format!("error: {e}"));
+        if result.is_ok() {
+            result = Err(e);
+        }
+        record.ending = Ending::Failed;
+    }
     record.wall = t0.elapsed().as_secs_f64();
     print_step_control(&record);
     let mut json = run_json(&prep, &record, &result, &files);
