@@ -344,6 +344,11 @@ impl RunFiles {
         Ok(())
     }
 
+    /// An earlier call already returned a write error (every later call repeats it).
+    pub fn write_failed(&self) -> bool {
+        self.failed.is_some()
+    }
+
     /// Output steps on disk (after waiting for those handed over).
     pub fn steps_written(&self) -> usize {
         self.sync();

@@ -158,10 +158,15 @@ pub fn run_scene(
     // The steps still queued for the writer and the summary rows still buffered: written
     // whether the run completed, was interrupted or failed. A write error found here fails
     // the run (a solver error found first stays the run's error) and run.json says so.
+    let failed_before = files.write_failed();
     if let Err(e) = files.flush() {
-        term.diagnostics.push(format!("error: {e}"));
         if result.is_ok() {
             result = Err(e);
+        } else if !failed_before {
+            // A second failure after the run's own (which stays its error).
+            let d = format!("error: {}", e.chain());
+            eprintln!("{d}");
+            term.diagnostics.push(d);
         }
         record.ending = Ending::Failed;
     }
