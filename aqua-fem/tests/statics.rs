@@ -608,30 +608,37 @@ fn integrators_hand_each_accepted_state_to_the_loads() {
     }
 }
 
+/// A 4 m chain of 4 elements lying on the seabed (frictionless in statics), with `force` [N]
+/// on its last node and its first node held in the DOFs `hold` (if any).
+fn chain_on_the_bed(force: [f64; 3], hold: Option<Dofs>) -> Model {
+    let env = Environment {
+        seabed: Some(Seabed::new(1.0)),
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let sec = CableSection::new(1e6, 2.0).with_contact(0.05);
+    let g = b.add_group("chain", sec).unwrap();
+    let nodes = add_line(&mut b, [0.0, 0.0, -1.0], [4.0, 0.0, -1.0], 4, 4.0, g, 0.0);
+    if let Some(dofs) = hold {
+        b.fix(nodes[0], dofs).unwrap();
+    }
+    b.add_point_body(PointBody {
+        node: nodes[4],
+        mass: 0.0,
+        force,
+        seabed_stiffness: 0.0,
+    })
+    .unwrap();
+    b.build().unwrap()
+}
+
 /// A chain lying on the seabed with a horizontal point force and no fixed node has no static
 /// equilibrium (statics has no friction): a `Drifting` error at once, with the resultant; the
 /// vertical-only load on the same chain solves.
 #[test]
 fn a_part_held_only_vertically_and_pushed_sideways_is_an_error() {
-    let build = |fy: f64| {
-        let env = Environment {
-            seabed: Some(Seabed::new(1.0)),
-            ..Default::default()
-        };
-        let mut b = ModelBuilder::new(env);
-        let sec = CableSection::new(1e6, 2.0).with_contact(0.05);
-        let g = b.add_group("chain", sec).unwrap();
-        let nodes = add_line(&mut b, [0.0, 0.0, -1.0], [4.0, 0.0, -1.0], 4, 4.0, g, 0.0);
-        b.add_point_body(PointBody {
-            node: nodes[4],
-            mass: 0.0,
-            force: [0.0, fy, 0.0],
-            seabed_stiffness: 0.0,
-        })
-        .unwrap();
-        b.build().unwrap()
-    };
-    match solve_static(&build(3.0), &mut NoLoads, &StaticSettings::default()) {
+    let pushed = chain_on_the_bed([0.0, 3.0, 0.0], None);
+    match solve_static(&pushed, &mut NoLoads, &StaticSettings::default()) {
         Err(FemError::Drifting {
             free_dirs,
             force,
@@ -644,7 +651,8 @@ fn a_part_held_only_vertically_and_pushed_sideways_is_an_error() {
         }
         other => panic!("{other:?}"),
     }
-    assert!(solve_static(&build(0.0), &mut NoLoads, &StaticSettings::default()).is_ok());
+    let resting = chain_on_the_bed([0.0; 3], None);
+    assert!(solve_static(&resting, &mut NoLoads, &StaticSettings::default()).is_ok());
 }
 
 /// The drift check judges each horizontal axis alone: the same chain with its first node
@@ -652,35 +660,13 @@ fn a_part_held_only_vertically_and_pushed_sideways_is_an_error() {
 /// reported as drifting when pushed along y (the roller takes it).
 #[test]
 fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
-    let build = |f: [f64; 3]| {
-        let env = Environment {
-            seabed: Some(Seabed::new(1.0)),
-            ..Default::default()
-        };
-        let mut b = ModelBuilder::new(env);
-        let sec = CableSection::new(1e6, 2.0).with_contact(0.05);
-        let g = b.add_group("chain", sec).unwrap();
-        let nodes = add_line(&mut b, [0.0, 0.0, -1.0], [4.0, 0.0, -1.0], 4, 4.0, g, 0.0);
-        let roller = Dofs {
-            x: false,
-            y: true,
-            z: false,
-        };
-        b.fix(nodes[0], roller).unwrap();
-        b.add_point_body(PointBody {
-            node: nodes[4],
-            mass: 0.0,
-            force: f,
-            seabed_stiffness: 0.0,
-        })
-        .unwrap();
-        b.build().unwrap()
-    };
-    match solve_static(
-        &build([2.0, 0.0, 0.0]),
-        &mut NoLoads,
-        &StaticSettings::default(),
-    ) {
+    let roller = Some(Dofs {
+        x: false,
+        y: true,
+        z: false,
+    });
+    let along_x = chain_on_the_bed([2.0, 0.0, 0.0], roller);
+    match solve_static(&along_x, &mut NoLoads, &StaticSettings::default()) {
         Err(FemError::Drifting {
             free_dirs, force, ..
         }) => {
@@ -689,11 +675,8 @@ fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
         }
         other => panic!("{other:?}"),
     }
-    let along_y = solve_static(
-        &build([0.0, 2.0, 0.0]),
-        &mut NoLoads,
-        &StaticSettings::default(),
-    );
+    let model = chain_on_the_bed([0.0, 2.0, 0.0], roller);
+    let along_y = solve_static(&model, &mut NoLoads, &StaticSettings::default());
     assert!(
         !matches!(along_y, Err(FemError::Drifting { .. })),
         "{along_y:?}"
