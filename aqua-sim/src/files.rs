@@ -7,8 +7,8 @@
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
 //! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
-//! for what holds when the process stops). `summary.csv` rows are buffered and flushed after
-//! at most [`CSV_FLUSH_INTERVAL`] of wall time after they were written (also while no further
+//! for what holds when the process stops). `summary.csv` rows are buffered and flushed at
+//! most [`CSV_FLUSH_INTERVAL`] of wall time after they were written (also while no further
 //! step arrives) and by [`RunFiles::flush`] (which the end of a run, an interruption or a
 //! failure calls, and dropping [`RunFiles`] does too).
 //!
