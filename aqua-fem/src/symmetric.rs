@@ -3,8 +3,8 @@
 //!
 //! The dynamic tangent J = m·M + c·C + k·K is symmetric except for the water loads'
 //! velocity and position derivatives. Writing J = S + A with S = ½(J + Jᵀ) and A = ½(J − Jᵀ),
-//! S is factorised as L·D·Lᵀ (supernodal, AMD ordering, the symbolic
-//! analysis reused) and J·y = b is solved by the stationary iteration
+//! S is factorised as L·D·Lᵀ (AMD ordering, simplicial or supernodal by the fill of the
+//! factor, the symbolic analysis reused) and J·y = b is solved by the stationary iteration
 //!
 //! ```text
 //! y₀ = S⁻¹·b,    y_{k+1} = y_k + S⁻¹·(b − J·y_k)
@@ -37,6 +37,12 @@ const REFINE_TOL: f64 = 1e-10;
 const MAX_SWEEPS: usize = 30;
 /// A sweep must shrink the residual by at least this factor.
 const MIN_CONTRACTION: f64 = 0.9;
+
+/// Largest fill nnz(L)/n of the simplicial L·D·Lᵀ for which it is kept; denser factors are
+/// supernodal. Measured (release, this 2-core machine): the 160-segment chain (fill 5.0)
+/// 0.58 s simplicial against 0.76 s supernodal for its 60 s run, the 2 × 3 farm (14.7) 3.3
+/// against 3.7 s for 3 s, the reference cage (40) 5.7 against 5.5 ms per step.
+const SIMPLICIAL_MAX_FILL: f64 = 24.0;
 
 /// The L·D·Lᵀ of the symmetric part of a structurally symmetric CSC matrix.
 pub(crate) struct SymmetricSolver {
@@ -106,15 +112,21 @@ impl SymmetricSolver {
             up_col_ptr.push(up_row_idx.len());
         }
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &up_col_ptr, None, &up_row_idx);
-        let params = CholeskySymbolicParams {
-            // faer's automatic choice picks the simplicial factor for cage tangents, which
-            // measured 1.7x slower than the supernodal one on the reference cage.
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic =
+        let analyse = |threshold| {
+            let params = CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: threshold,
+                ..Default::default()
+            };
             factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, params)
-                .map_err(|e| FemError::Linear(format!("symbolic LDLt: {e:?}")))?;
+                .map_err(|e| FemError::Linear(format!("symbolic LDLt: {e:?}")))
+        };
+        // Simplicial for thin factors (lines, grids of lines), supernodal for nets: decided
+        // by the fill nnz(L)/n of the simplicial factor, so the choice (and every result bit)
+        // depends on the model alone (docs/theory/fem.md#sparse-linear-algebra).
+        let mut symbolic = analyse(SupernodalThreshold::FORCE_SIMPLICIAL)?;
+        if symbolic.len_val() as f64 > SIMPLICIAL_MAX_FILL * n as f64 {
+            symbolic = analyse(SupernodalThreshold::FORCE_SUPERNODAL)?;
+        }
         let req = symbolic
             .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default())
             .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
