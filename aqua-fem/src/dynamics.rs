@@ -87,9 +87,6 @@ pub struct LinearSolverStats {
     pub refinement_sweeps: usize,
 }
 
-/// Relative change of Δt up to which the kept symmetric factor stays the preconditioner.
-const KEEP_FACTOR_DT_CHANGE: f64 = 0.1;
-
 /// Smallest fraction of a Newton update that backtracking tries.
 const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
 
@@ -975,13 +972,8 @@ impl<'m> DynamicSolver<'m> {
         };
         if self.lu_h != h {
             self.lu_valid = false;
-            // A new Δt changes the tangent's mass and damping terms by its square. The kept
-            // L·D·Lᵀ only preconditions the refinement (docs/theory/fem.md#sparse-linear-algebra),
-            // so a Δt within `KEEP_FACTOR_DT_CHANGE` of its own (a step shortened by rounding
-            // to land on an output time) keeps it.
-            if !((h / self.lu_h - 1.0).abs() <= KEEP_FACTOR_DT_CHANGE) {
-                self.sys.require_fresh_factor();
-            }
+            // A new Δt changes the tangent's mass and damping terms by its square.
+            self.sys.require_fresh_factor();
         }
         let mut rn_prev = f64::INFINITY;
         self.attempt_factorisations = 0;
