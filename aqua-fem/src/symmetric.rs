@@ -40,8 +40,9 @@ const MIN_CONTRACTION: f64 = 0.9;
 
 /// Largest fill nnz(L)/n of the simplicial L·D·Lᵀ for which it is kept; denser factors are
 /// supernodal. Measured (release, this 2-core machine): the 160-segment chain (fill 5.0)
-/// 0.58 s simplicial against 0.76 s supernodal for its 60 s run, the 2 × 3 farm (14.7) 3.3
-/// against 3.7 s for 3 s, the reference cage (40) 5.7 against 5.5 ms per step.
+/// 0.46–0.63 s simplicial against 0.76–0.83 s supernodal for its 60 s run, the 2 × 3 farm
+/// (14.7) 2.9 against 3.4 s for 3 s, the reference cage (40) 7.2 ms per step simplicial
+/// against 5.7–6.0 ms supernodal.
 const SIMPLICIAL_MAX_FILL: f64 = 24.0;
 
 /// The L·D·Lᵀ of the symmetric part of a structurally symmetric CSC matrix.
@@ -277,6 +278,7 @@ fn norm(v: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 
     /// CSC of a dense n × n matrix keeping the entries where `keep(r, c)`.
     fn csc(a: &nalgebra::DMatrix<f64>, keep: impl Fn(usize, usize) -> bool) -> CscParts {
@@ -298,12 +300,23 @@ mod tests {
     /// A banded tangent like a chain's: SPD symmetric part (mass + stiffness) plus a
     /// skew part of relative size `skew` (drag-like), half-bandwidth 3.
     fn tangent(n: usize, skew: f64) -> nalgebra::DMatrix<f64> {
+        banded(n, 3, skew)
+    }
+
+    /// As `tangent` with half-bandwidth `band`. Off-diagonals decay like 1/d (band 3) or
+    /// 1/d² (wider), so a row's off-diagonal sum stays below 2 < 4 ≤ the diagonal: S is
+    /// diagonally dominant, hence SPD.
+    fn banded(n: usize, band: usize, skew: f64) -> nalgebra::DMatrix<f64> {
         let mut a = nalgebra::DMatrix::zeros(n, n);
         for i in 0..n {
             a[(i, i)] = 4.0 + (i % 5) as f64 * 0.3;
-            for d in 1..=3 {
+            for d in 1..=band {
                 if i + d < n {
-                    let s = -0.5 / d as f64;
+                    let s = if band == 3 {
+                        -0.5 / d as f64
+                    } else {
+                        -0.5 / (d * d) as f64
+                    };
                     let k = skew * (((i * 7 + d * 3) % 11) as f64 / 11.0 - 0.5);
                     a[(i, i + d)] = s + k;
                     a[(i + d, i)] = s - k;
@@ -316,9 +329,20 @@ mod tests {
     fn solve_both(
         a: &nalgebra::DMatrix<f64>,
     ) -> (std::result::Result<(), SymmetricFallback>, f64, usize) {
+        let (out, err, sweeps, _) = solve_banded(a, 3);
+        (out, err, sweeps)
+    }
+
+    /// Solves with the symmetric solver on the band pattern and compares with a dense LU;
+    /// also says whether the factor went supernodal.
+    fn solve_banded(
+        a: &nalgebra::DMatrix<f64>,
+        band: usize,
+    ) -> (std::result::Result<(), SymmetricFallback>, f64, usize, bool) {
         let n = a.nrows();
-        let (cp, ri, v) = csc(a, |r, c| r.abs_diff(c) <= 3);
+        let (cp, ri, v) = csc(a, |r, c| r.abs_diff(c) <= band);
         let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        let supernodal = matches!(s.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
         s.factorize(&v).unwrap();
         let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
         let mut y = b.clone();
@@ -330,7 +354,22 @@ mod tests {
             .solve(&nalgebra::DVector::from_vec(b))
             .unwrap();
         let err = (nalgebra::DVector::from_vec(y) - &exact).norm() / exact.norm();
-        (out, err, s.last_sweeps)
+        (out, err, s.last_sweeps, supernodal)
+    }
+
+    #[test]
+    fn thin_factor_is_simplicial_and_wide_band_supernodal_both_exact() {
+        // Half-bandwidth 3: fill ≈ 4 ≤ 24, simplicial (the path lines take).
+        let (out, err, _, supernodal) = solve_banded(&banded(100, 3, 0.05), 3);
+        assert_eq!(out, Ok(()));
+        assert!(err < 1e-10, "{err}");
+        assert!(!supernodal);
+        // Half-bandwidth 40: fill ≈ 40 > 24, supernodal (the path nets take).
+        let (out, err, sweeps, supernodal) = solve_banded(&banded(100, 40, 0.05), 40);
+        assert_eq!(out, Ok(()));
+        assert!(err < 1e-10, "{err}");
+        assert!(supernodal);
+        assert!((1..=8).contains(&sweeps), "{sweeps} sweeps");
     }
 
     #[test]
