@@ -87,6 +87,10 @@ pub struct LinearSolverStats {
     pub refinement_sweeps: usize,
 }
 
+/// A landing step within this fraction of Δt of the step itself is taken as Δt (the
+/// difference is the round-off of t_out − t).
+const LANDING_ROUNDOFF: f64 = 1e-9;
+
 /// Smallest fraction of a Newton update that backtracking tries.
 const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
 
@@ -826,7 +830,12 @@ impl<'m> DynamicSolver<'m> {
             // Land on the target when within 1e-6·dt of it: a remaining sliver of round-off
             // size would be a step whose (x1 − x_n)/h is all round-off.
             if t + h >= target - 1e-6 * self.st.dt {
-                h = target - t;
+                // A landing that differs from the step by round-off only (t_out − t ≠ Δt
+                // in the last bits) keeps Δt, so the step, its tangent and the kept factor
+                // are those of any other step; the clock is set to t_out exactly below.
+                if (target - t - h).abs() > LANDING_ROUNDOFF * self.st.dt {
+                    h = target - t;
+                }
                 landed = true;
             }
             let outcome = self

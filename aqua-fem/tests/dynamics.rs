@@ -791,3 +791,55 @@ fn symmetric_factorisation_follows_the_lu_in_a_current() {
     assert_eq!(nl, ns, "same steps");
     assert_eq!(il, is, "same Newton iterations");
 }
+
+/// A step that lands on an output time, t_out − t, differs from Δt by round-off only; it is
+/// taken as Δt, so outputs neither change the trajectory nor force fresh factorisations (each
+/// output used to force two: the landing step and the next full one, 81 factorisations in 200
+/// steps of the reference cage; docs/theory/fem.md#sparse-linear-algebra).
+#[test]
+fn output_landings_are_steps_like_any_other() {
+    let (m, tip) = swinging_chain();
+    let run = |out: Option<f64>| {
+        let mut w = WaterLines::new(&m, 0.05, 1.2, [0.0, 0.8, 0.0]);
+        let mut s = DynamicSettings::new(0.01, 1.0);
+        s.fd_position_jacobian = true;
+        s.output_interval = out;
+        let mut solver = DynamicSolver::new(&m, s, None, &mut w).unwrap();
+        let (mut outputs, mut off_grid) = (0, 0);
+        while !solver.is_finished() {
+            let r = solver.step(&mut w).unwrap();
+            outputs += r.output_time as usize;
+            off_grid += (r.dt != 0.01) as usize;
+            if r.output_time && out.is_some() {
+                // The clock is on the output time exactly.
+                let k = (r.t / 0.03).round();
+                assert!(
+                    r.t == k * 0.03 || r.t == 1.0,
+                    "output at {} dt {}",
+                    r.t,
+                    r.dt
+                );
+            }
+        }
+        (
+            solver.linear_solver_stats(),
+            outputs,
+            off_grid,
+            solver.state().x[tip],
+        )
+    };
+    let (free, _, _, x_free) = run(None);
+    let (landed, outputs, off_grid, x_landed) = run(Some(0.03));
+    assert!(outputs >= 33, "{outputs} output steps");
+    // 1.0 is no multiple of 0.03: the last step alone is short.
+    assert!(off_grid <= 1, "{off_grid} steps other than Δt");
+    assert!(
+        landed.factorisations <= free.factorisations + 1,
+        "{landed:?} with {outputs} output steps against {free:?} without"
+    );
+    let d = (0..3)
+        .map(|k| (x_free[k] - x_landed[k]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    assert!(d < 1e-9, "tip {x_free:?} vs {x_landed:?}");
+}
