@@ -45,6 +45,16 @@ const MIN_CONTRACTION: f64 = 0.9;
 /// against 5.7–6.0 ms supernodal.
 const SIMPLICIAL_MAX_FILL: f64 = 24.0;
 
+/// Early ends of the refinement besides ‖b − J·y‖₂ ≤ `REFINE_TOL`·‖b‖₂.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct RefineStop {
+    /// Stop, as solved, once ‖b − J·y‖₂ is at most this (0: never). A Newton caller
+    /// passes a fraction of its own residual tolerance (inexact Newton).
+    pub floor: f64,
+    /// Stop, as settled, once ‖y‖∞ ≤ bound is certain: ‖y‖∞ + 2‖δ‖∞ ≤ bound.
+    pub bound: Option<f64>,
+}
+
 /// The L·D·Lᵀ of the symmetric part of a structurally symmetric CSC matrix.
 pub(crate) struct SymmetricSolver {
     n: usize,
@@ -209,19 +219,34 @@ impl SymmetricSolver {
 
     /// Solves J·y = rhs in place (J as at the last `factorize`, in the CSC pattern
     /// `col_ptr`/`row_idx`). On `Err` `rhs` is left unchanged.
+    #[cfg(test)]
     pub(crate) fn solve(
         &mut self,
         col_ptr: &[usize],
         row_idx: &[usize],
         rhs: &mut [f64],
     ) -> std::result::Result<(), SymmetricFallback> {
+        let stop = RefineStop::default();
+        self.solve_within(col_ptr, row_idx, rhs, stop).map(|_| ())
+    }
+
+    /// As `solve`, with the early stops of `stop`: `Ok(true)` when the bound settled it
+    /// (`rhs` then holds that inexact y), `Ok(false)` for the solution (to `REFINE_TOL` or
+    /// to the resolution).
+    pub(crate) fn solve_within(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        rhs: &mut [f64],
+        stop: RefineStop,
+    ) -> std::result::Result<bool, SymmetricFallback> {
         self.b.copy_from_slice(rhs);
         let bn = norm(&self.b);
         let mut y = std::mem::take(&mut self.y);
         let mut res = std::mem::take(&mut self.res);
         y.copy_from_slice(rhs);
         self.solve_s(&mut y);
-        let out = self.refine(col_ptr, row_idx, &mut y, &mut res, bn);
+        let out = self.refine(col_ptr, row_idx, &mut y, &mut res, bn, stop);
         if out.is_ok() {
             rhs.copy_from_slice(&y);
         }
@@ -230,7 +255,8 @@ impl SymmetricSolver {
         out
     }
 
-    /// The refinement sweeps on `y` (initially S⁻¹·b); `res` is scratch.
+    /// The refinement sweeps on `y` (initially S⁻¹·b); `res` is scratch. `Ok(true)`: stopped
+    /// early on `stop.bound`.
     fn refine(
         &mut self,
         col_ptr: &[usize],
@@ -238,8 +264,10 @@ impl SymmetricSolver {
         y: &mut [f64],
         res: &mut [f64],
         bn: f64,
-    ) -> std::result::Result<(), SymmetricFallback> {
+        stop: RefineStop,
+    ) -> std::result::Result<bool, SymmetricFallback> {
         let mut last = f64::INFINITY;
+        let mut correction = f64::INFINITY;
         self.last_sweeps = 0;
         loop {
             // res = b − J·y
@@ -255,8 +283,16 @@ impl SymmetricSolver {
             if !rn.is_finite() {
                 return Err(SymmetricFallback::NonFinite);
             }
-            if rn <= REFINE_TOL * bn {
-                return Ok(());
+            if rn <= REFINE_TOL * bn || rn <= stop.floor {
+                return Ok(false);
+            }
+            // After a sweep that contracted the residual by q ≤ ½, the remaining error is
+            // at most q/(1 − q)·‖δ‖ ≤ ‖δ‖ (δ that sweep's correction).
+            if let Some(d) = stop.bound
+                && rn <= 0.5 * last
+                && inf_norm(y) + 2.0 * correction <= d
+            {
+                return Ok(true);
             }
             if rn > MIN_CONTRACTION * last || self.last_sweeps == MAX_SWEEPS {
                 return Err(SymmetricFallback::NoContraction);
@@ -266,9 +302,14 @@ impl SymmetricSolver {
             for (yi, d) in y.iter_mut().zip(res.iter()) {
                 *yi += d;
             }
+            correction = inf_norm(res);
             self.last_sweeps += 1;
         }
     }
+}
+
+fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 fn norm(v: &[f64]) -> f64 {
@@ -355,6 +396,66 @@ mod tests {
             .unwrap();
         let err = (nalgebra::DVector::from_vec(y) - &exact).norm() / exact.norm();
         (out, err, s.last_sweeps, supernodal)
+    }
+
+    #[test]
+    fn bound_and_floor_stop_the_refinement_early_and_only_when_safe() {
+        let a = tangent(60, 0.05);
+        let n = a.nrows();
+        let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
+        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        s.factorize(&v).unwrap();
+        let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
+        let exact = a
+            .clone()
+            .lu()
+            .solve(&nalgebra::DVector::from_vec(b.clone()))
+            .unwrap();
+        let ymax = exact.amax();
+        let mut full = b.clone();
+        s.solve(&cp, &ri, &mut full).unwrap();
+        let full_sweeps = s.last_sweeps;
+        let solve = |s: &mut SymmetricSolver, stop: RefineStop| {
+            let mut y = b.clone();
+            let out = s.solve_within(&cp, &ri, &mut y, stop).unwrap();
+            (out, y, s.last_sweeps)
+        };
+        // A bound twice the solution's size is settled early; the inexact y obeys it.
+        let (out, y, sweeps) = solve(
+            &mut s,
+            RefineStop {
+                floor: 0.0,
+                bound: Some(2.0 * ymax),
+            },
+        );
+        assert!(
+            out && sweeps < full_sweeps,
+            "{out} after {sweeps} of {full_sweeps}"
+        );
+        assert!(y.iter().all(|v| v.abs() <= 2.0 * ymax));
+        // A bound below the solution's size is never settled: the full solution.
+        let (out, y, _) = solve(
+            &mut s,
+            RefineStop {
+                floor: 0.0,
+                bound: Some(0.9 * ymax),
+            },
+        );
+        assert!(!out);
+        let err = (nalgebra::DVector::from_vec(y) - &exact).norm() / exact.norm();
+        assert!(err < 1e-10, "{err}");
+        // A residual floor of 1e-4·‖b‖ stops before 1e-10 with that residual.
+        let bn = norm(&b);
+        let (out, y, sweeps) = solve(
+            &mut s,
+            RefineStop {
+                floor: 1e-4 * bn,
+                bound: None,
+            },
+        );
+        assert!(!out && sweeps < full_sweeps, "{sweeps} of {full_sweeps}");
+        let r = nalgebra::DVector::from_vec(b.clone()) - &a * nalgebra::DVector::from_vec(y);
+        assert!(r.norm() <= 1e-4 * bn, "{}", r.norm() / bn);
     }
 
     #[test]

@@ -8,7 +8,7 @@ use crate::error::{FemError, Result};
 use crate::friction::{self, Normal};
 use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
 use crate::model::Model;
-use crate::symmetric::SymmetricSolver;
+use crate::symmetric::{RefineStop, SymmetricSolver};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{NumericLu, SymbolicLu, factorize_symbolic_lu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -893,23 +893,33 @@ impl System {
     /// The symmetric solve of `rhs` with the current factor; a stale factor that does not
     /// contract is replaced by a fresh one of this J and the solve repeated. `Err` leaves `rhs`
     /// untouched (the caller falls back to the LU).
-    fn solve_symmetric(&mut self, rhs: &mut [f64]) -> std::result::Result<(), ()> {
+    /// `floor` and `bound` as in `solve_within`; `Ok(true)` is an early stop on `bound`,
+    /// whose sweep count says nothing of the factor's quality and is left out of the
+    /// refactor rule.
+    fn solve_symmetric(
+        &mut self,
+        rhs: &mut [f64],
+        floor: f64,
+        bound: Option<f64>,
+    ) -> std::result::Result<bool, ()> {
         let sym = self.sym.as_mut().expect("symmetric factor");
         for _ in 0..2 {
             let fresh = sym.is_fresh();
-            let out = sym.solve(&self.col_ptr, &self.row_idx, rhs);
+            let stop = RefineStop { floor, bound };
+            let out = sym.solve_within(&self.col_ptr, &self.row_idx, rhs, stop);
             self.n_refinement_sweeps += sym.last_sweeps;
             match (out, fresh) {
-                (Ok(()), true) => {
+                (Ok(true), _) => return Ok(true),
+                (Ok(false), true) => {
                     self.sym_fresh_sweeps = sym.last_sweeps;
-                    return Ok(());
+                    return Ok(false);
                 }
-                (Ok(()), false) => {
+                (Ok(false), false) => {
                     // Refactorise once the stale factor costs more sweeps than a new one.
                     if sym.last_sweeps > self.sym_fresh_sweeps + STALE_EXTRA_SWEEPS {
                         self.sym_refactor = true;
                     }
-                    return Ok(());
+                    return Ok(false);
                 }
                 (Err(_), true) => return Err(()),
                 (Err(_), false) => {
@@ -961,13 +971,27 @@ impl System {
 
     /// Solves J·y = rhs in place with the last factorisation.
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        self.solve_within(rhs, 0.0, None).map(|_| ())
+    }
+
+    /// As `solve`, for a Newton caller that needs less than the full solution: the
+    /// symmetric refinement also stops once ‖rhs − J·y‖₂ ≤ `floor`, and, with `bound`, once
+    /// ‖y‖∞ ≤ bound is certain (a convergence check whose update is not applied; `Ok(true)`
+    /// then, `rhs` holding the inexact y). `Ok(false)`: `rhs` holds y to 1e-10 or to
+    /// `floor`. The LU solve is always exact.
+    pub fn solve_within(
+        &mut self,
+        rhs: &mut [f64],
+        floor: f64,
+        bound: Option<f64>,
+    ) -> Result<bool> {
         let nf = self.n_free();
         if nf == 0 {
-            return Ok(());
+            return Ok(false);
         }
         if self.sym_active {
-            if self.solve_symmetric(rhs).is_ok() {
-                return Ok(());
+            if let Ok(early) = self.solve_symmetric(rhs, floor, bound) {
+                return Ok(early);
             }
             // The LU of the same matrix the symmetric factor was made of.
             let factored = std::mem::take(&mut self.sym.as_mut().expect("symmetric").factored);
@@ -990,7 +1014,7 @@ impl System {
                     .into(),
             ));
         }
-        Ok(())
+        Ok(false)
     }
 }
 

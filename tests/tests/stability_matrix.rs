@@ -90,6 +90,12 @@ fn judged_peak(c: &Cell<'_>, reference: f64) -> f64 {
     if c.outcome.error.is_some() || ((first - reference) / reference).abs() <= 0.01 {
         return first;
     }
+    tol_median(c)
+}
+
+/// The median peak of a run and two with its Newton tolerance moved by ∓1 %.
+fn tol_median(c: &Cell<'_>) -> f64 {
+    let first = c.outcome.peak;
     let tol = c
         .set
         .iter()
@@ -357,13 +363,21 @@ fn extreme_cells() {
     assert_ne!(storm, cage);
     for (name, text) in [("no current", &still), ("Hs 10 m", &storm)] {
         let tag = name.replace(' ', "-");
-        let reference = run(
+        // The slack small cage's peak moves by up to ±0.2 % with perturbations far inside
+        // the Newton tolerance, at dt 0.0025 as at dt 0.1: its reference is judged like a
+        // cell, on the median of three runs.
+        let reference = cell(
             &dir,
             &format!("ref-{tag}"),
             text,
             &["scheme=midpoint", "dt=0.0025"],
         );
-        assert!(reference.error.is_none(), "{:?}", reference.error);
+        assert!(
+            reference.outcome.error.is_none(),
+            "{:?}",
+            reference.outcome.error
+        );
+        let reference_peak = tol_median(&reference);
         for scheme in ["hht", "midpoint"] {
             let o = cell(
                 &dir,
@@ -374,7 +388,7 @@ fn extreme_cells() {
             check(
                 &format!("small cage {name} {scheme} dt 0.1"),
                 &o,
-                reference.peak,
+                reference_peak,
                 false,
             );
         }
