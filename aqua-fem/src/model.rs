@@ -647,6 +647,11 @@ pub struct Model {
 }
 
 impl Model {
+    /// Number of nodes whose motion is prescribed (fairleads driven by a motion).
+    pub fn n_prescribed_motions(&self) -> usize {
+        self.motions.len()
+    }
+
     /// Environment (g, ρ_w, seabed).
     pub fn environment(&self) -> &Environment {
         &self.env
