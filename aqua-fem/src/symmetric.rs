@@ -232,7 +232,7 @@ impl SymmetricSolver {
 
     /// As `solve`, with the early stops of `stop`: `Ok(true)` when the bound settled it
     /// (`rhs` then holds that inexact y), `Ok(false)` for the solution (to `REFINE_TOL` or
-    /// to the resolution).
+    /// to `stop.floor`).
     pub(crate) fn solve_within(
         &mut self,
         col_ptr: &[usize],
