@@ -92,6 +92,17 @@ pub struct LinearSolverStats {
 /// residual tolerance (inexact Newton; docs/theory/fem.md#sparse-linear-algebra).
 const LINEAR_FORCING: f64 = 1e-2;
 
+/// Fraction of the predicted nonlinear remainder that an update's solve may leave while that
+/// remainder is above the Newton tolerance (docs/theory/fem.md#sparse-linear-algebra).
+const EW_FRACTION: f64 = 0.1;
+
+/// Contraction ‖r_k‖/‖r_{k−1}‖ below which Newton counts as in its quadratic regime, where the
+/// forcing term applies.
+const EW_REGIME: f64 = 0.1;
+
+/// The loosest solve of an update: its linear residual at most this fraction of ‖r‖.
+const EW_MAX_FORCING: f64 = 1e-2;
+
 /// A landing step within this fraction of Δt of the step itself is taken as Δt (the
 /// difference is the round-off of t_out − t).
 const LANDING_ROUNDOFF: f64 = 1e-9;
@@ -277,6 +288,9 @@ pub struct DynamicSolver<'m> {
     /// Iterations of the current attempt that used a factorisation formed before them
     /// (modified Newton).
     attempt_stale_solves: usize,
+    /// ‖r₁‖/‖r₀‖ of the last accepted step (NaN before one): predicts the first update's
+    /// nonlinear remainder for the inexact solve.
+    first_contraction: f64,
     /// The next attempt uses full Newton: set after a modified-Newton attempt failed, so a
     /// step is halved only when full Newton fails too.
     full_newton: bool,
@@ -536,6 +550,7 @@ impl<'m> DynamicSolver<'m> {
             lu_uses: 0,
             attempt_factorisations: 0,
             attempt_stale_solves: 0,
+            first_contraction: f64::NAN,
             full_newton: false,
             trial: Outputs::new(model),
             control: StepControl::default(),
@@ -854,6 +869,9 @@ impl<'m> DynamicSolver<'m> {
                 });
             match outcome {
                 Ok((iters, hist)) => {
+                    if hist.len() >= 2 && hist[0] > 0.0 {
+                        self.first_contraction = hist[1] / hist[0];
+                    }
                     self.full_newton = false;
                     self.track_time_error(h);
                     self.clamp = false;
@@ -1095,6 +1113,18 @@ impl<'m> DynamicSolver<'m> {
                 self.attempt_stale_solves += 1;
             }
             self.lu_uses += 1;
+            // The last contraction q, and the remainder it predicts in Newton's quadratic regime
+            // (q ≤ EW_REGIME, i.e. at least 10×; otherwise nothing is predicted).
+            let q = if it == 0 {
+                self.first_contraction
+            } else {
+                rn / rn_prev
+            };
+            let predicted = if q <= EW_REGIME {
+                rn * if it == 0 { q } else { q * q }
+            } else {
+                0.0
+            };
             rn_prev = rn;
             for f in 0..self.r.len() {
                 self.dx[f] = -self.r[f];
@@ -1103,7 +1133,18 @@ impl<'m> DynamicSolver<'m> {
             // Newton correction is below `xtol` (it is not applied then), and the symmetric
             // refinement may stop as soon as that is certain.
             let bound = (rn <= tol).then_some(xtol);
-            let floor = LINEAR_FORCING * tol;
+            // Inexact Newton with a forcing term in the manner of Eisenstat and Walker: while
+            // the update will leave a nonlinear remainder above tol anyway (predicted from the
+            // last contraction, quadratic model), its solve need only reach a tenth of that
+            // remainder, and at most 1 % of ‖r‖ (docs/theory/fem.md#sparse-linear-algebra).
+            // Full Newton only: the quadratic model does not describe modified Newton.
+            let floor = if reuse == 1 && predicted > tol {
+                (EW_FRACTION * predicted)
+                    .min(EW_MAX_FORCING * rn)
+                    .max(LINEAR_FORCING * tol)
+            } else {
+                LINEAR_FORCING * tol
+            };
             let settled = match self.sys.solve_within(&mut self.dx, floor, bound) {
                 Ok(settled) => settled,
                 Err(e) => return Err(fail(e.to_string(), &hist)),
