@@ -57,9 +57,11 @@
 //! ordering, symbolic analysis once, numeric factorisation every Newton iteration). Dynamics by
 //! default factorise the symmetric part S = ½(J + Jᵀ) as **L·D·Lᵀ** (AMD; simplicial or
 //! supernodal by fill), keep that factor across iterations and steps while it stays a good
-//! preconditioner, and refine y ← y + S⁻¹(b − J·y) to 1e-10 (or to 1 % of the Newton
-//! tolerance, inexact Newton) so every Newton step is J's own; the LU takes over where the
-//! refinement does not contract (docs/theory/fem.md#sparse-linear-algebra).
+//! preconditioner, and refine y ← y + S⁻¹(b − J·y) to 1e-10, or, inside Newton, to 1 % of the
+//! Newton tolerance, and only to a tenth of the remainder Newton's quadratic model predicts
+//! while that is above the tolerance (inexact Newton, an Eisenstat–Walker forcing term), so
+//! every Newton step is J's own; the LU takes over where the refinement does not contract
+//! (docs/theory/fem.md#sparse-linear-algebra).
 //!
 //! ## Use
 //! ```
