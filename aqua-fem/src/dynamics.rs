@@ -100,9 +100,6 @@ const EW_FRACTION: f64 = 0.1;
 /// forcing term applies.
 const EW_REGIME: f64 = 0.1;
 
-/// The loosest solve of an update: its linear residual at most this fraction of ‖r‖.
-const EW_MAX_FORCING: f64 = 1e-2;
-
 /// A landing step within this fraction of Δt of the step itself is taken as Δt (the
 /// difference is the round-off of t_out − t).
 const LANDING_ROUNDOFF: f64 = 1e-9;
@@ -1136,12 +1133,11 @@ impl<'m> DynamicSolver<'m> {
             // Inexact Newton with a forcing term in the manner of Eisenstat and Walker: while
             // the update will leave a nonlinear remainder above tol anyway (predicted from the
             // last contraction, quadratic model), its solve need only reach a tenth of that
-            // remainder, and at most 1 % of ‖r‖ (docs/theory/fem.md#sparse-linear-algebra).
-            // Full Newton only: the quadratic model does not describe modified Newton.
+            // remainder (docs/theory/fem.md#sparse-linear-algebra); with q ≤ EW_REGIME that is
+            // never looser than 1 % of ‖r‖. Full Newton only: the quadratic model does not
+            // describe modified Newton.
             let floor = if reuse == 1 && predicted > tol {
-                (EW_FRACTION * predicted)
-                    .min(EW_MAX_FORCING * rn)
-                    .max(LINEAR_FORCING * tol)
+                (EW_FRACTION * predicted).max(LINEAR_FORCING * tol)
             } else {
                 LINEAR_FORCING * tol
             };
