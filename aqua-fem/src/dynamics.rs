@@ -2,6 +2,7 @@
 //! (docs/theory/fem.md#hht-alpha, #step-control).
 
 use crate::error::{FemError, Result, invalid};
+use crate::line_relaxation::{LineRelaxation, StepKinematics};
 use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::state::{Outputs, State};
@@ -60,6 +61,11 @@ pub struct DynamicSettings {
     /// [`LinearSolverKind::Symmetric`].
     #[serde(default)]
     pub linear_solver: LinearSolverKind,
+    /// Midpoint rule: after each Newton update, solve the interior of every free line with
+    /// its ends held, carrying slack-to-taut switches along it within the iteration
+    /// (docs/theory/fem.md#line-relaxation). Default true; HHT-α never relaxes.
+    #[serde(default = "yes")]
+    pub line_relaxation: bool,
 }
 
 /// The factorisation of the dynamic Newton systems.
@@ -86,6 +92,14 @@ pub struct LinearSolverStats {
     pub fallbacks: usize,
     /// Refinement sweeps of all symmetric solves.
     pub refinement_sweeps: usize,
+    /// Free lines that the midpoint rule relaxes (docs/theory/fem.md#line-relaxation).
+    pub relaxed_lines: usize,
+    /// Local line solves kept.
+    pub line_solves_kept: usize,
+    /// Local line solves left at the Newton update (their remainder did not fall).
+    pub line_solves_reverted: usize,
+    /// Block-tridiagonal local Newton iterations over all line solves.
+    pub line_iterations: usize,
 }
 
 /// A Newton update's linear solve may leave a residual of this fraction of the Newton
@@ -104,11 +118,19 @@ const EW_REGIME: f64 = 0.1;
 /// difference is the round-off of t_out − t).
 const LANDING_ROUNDOFF: f64 = 1e-9;
 
+/// Lines are relaxed down to this fraction of the Newton tolerance's force
+/// (docs/theory/fem.md#line-relaxation).
+const LINE_FLOOR: f64 = 1e-2;
+
 /// Smallest fraction of a Newton update that backtracking tries.
 const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
 
 fn one() -> usize {
     1
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl DynamicSettings {
@@ -129,6 +151,7 @@ impl DynamicSettings {
             reuse_factor: 1,
             midpoint: false,
             linear_solver: LinearSolverKind::Symmetric,
+            line_relaxation: true,
         }
     }
 
@@ -267,6 +290,12 @@ pub struct DynamicSolver<'m> {
     dx: Vec<f64>,
     dt_cur: f64,
     good_steps: usize,
+    /// The free lines and their relaxation (docs/theory/fem.md#line-relaxation).
+    lines: LineRelaxation,
+    /// Relax the lines after each Newton update.
+    relax_lines: bool,
+    /// The Newton iterate before the last update.
+    x_iter: Vec<[f64; 3]>,
     energies: Energies,
     e0: f64,
     f_floor: f64,
@@ -518,8 +547,12 @@ impl<'m> DynamicSolver<'m> {
         let max_ea = model.elements().iter().map(|e| e.ea).fold(0.0, f64::max);
         let wsum: f64 = model.weight.iter().map(|w| w[2].abs()).sum();
         let nf = sys.n_free();
+        let lines = LineRelaxation::new(model, &sys);
         let mut s = Self {
             model,
+            lines,
+            relax_lines: settings.midpoint && settings.line_relaxation,
+            x_iter: Vec::new(),
             dt_cur: settings.dt,
             st: settings,
             sys,
@@ -638,6 +671,14 @@ impl<'m> DynamicSolver<'m> {
             factor_reuses: self.sys.n_factor_reuses,
             fallbacks: self.sys.n_symmetric_fallbacks,
             refinement_sweeps: self.sys.n_refinement_sweeps,
+            relaxed_lines: if self.relax_lines {
+                self.lines.n_lines()
+            } else {
+                0
+            },
+            line_solves_kept: self.lines.kept,
+            line_solves_reverted: self.lines.reverted,
+            line_iterations: self.lines.local_iterations,
         }
     }
     /// What the step control did so far.
@@ -1150,11 +1191,43 @@ impl<'m> DynamicSolver<'m> {
                 strain_check(&self.sys, &hist)?;
                 return self.finish_attempt(provider, t1, it + 1, hist);
             }
+            let relax = refactor && self.relax_lines && self.lines.n_lines() > 0;
+            if relax {
+                self.x_iter.clone_from(&self.x1);
+            }
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
                 self.x1[gd / 3][gd % 3] += self.dx[f];
             }
             step_scale = 1.0;
             dx_prev = dinf;
+            if relax {
+                // Carry slack-to-taut switches along the lines before the next evaluation
+                // (docs/theory/fem.md#line-relaxation).
+                let kin = StepKinematics {
+                    midpoint,
+                    h,
+                    beta,
+                    gamma,
+                    xn: &self.state.x,
+                    vn: &self.state.v,
+                    an: &self.state.a,
+                    x_eval: if midpoint { &self.xm } else { &self.x_iter },
+                    v_eval: if midpoint { &self.vm } else { &self.v1 },
+                    coef,
+                    weight: wq,
+                    a_k: self.st.rayleigh[1],
+                    clamp: self.clamp,
+                };
+                let moved = self.lines.relax(
+                    model,
+                    &self.sys,
+                    &kin,
+                    &self.x_iter,
+                    &mut self.x1,
+                    LINE_FLOOR * tol,
+                );
+                dx_prev = dx_prev.max(moved);
+            }
         }
         Err(fail(
             format!("no convergence in {} Newton iterations", self.st.max_iter),

@@ -89,6 +89,7 @@ pub mod dynamics;
 pub mod error;
 pub mod explicit;
 pub mod friction;
+mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;

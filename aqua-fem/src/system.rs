@@ -379,6 +379,23 @@ impl System {
         })
     }
 
+    /// Position in `values` of the Jacobian entry (free row, free column), if in the pattern.
+    pub(crate) fn entry_pos(&self, row: usize, col: usize) -> Option<usize> {
+        if row == NONE || col == NONE {
+            return None;
+        }
+        let s = &self.row_idx[self.col_ptr[col]..self.col_ptr[col + 1]];
+        s.binary_search(&row).ok().map(|k| self.col_ptr[col] + k)
+    }
+
+    /// The nodes of each load element.
+    pub(crate) fn load_element_nodes(&self) -> impl Iterator<Item = &[usize]> {
+        self.load_nodes
+            .iter()
+            .zip(&self.load_nn)
+            .map(|(nodes, &nn)| &nodes[..nn])
+    }
+
     /// Number of free DOFs.
     pub fn n_free(&self) -> usize {
         self.dof_of_free.len()

@@ -860,3 +860,90 @@ fn output_landings_are_steps_like_any_other() {
         .sqrt();
     assert!(d < 1e-9, "tip {x_free:?} vs {x_landed:?}");
 }
+
+/// A straight tension-only line in zero gravity, every element 1 % slack, fixed at one end
+/// and towed at the other: the tightening runs from the towed end to the fixed one. Returns
+/// the model and its nodes.
+fn slack_towed_line(segments: usize) -> (Model, Vec<usize>) {
+    let env = Environment {
+        gravity: 0.0,
+        ..Default::default()
+    };
+    let mut b = ModelBuilder::new(env);
+    let g = b.add_group("line", CableSection::new(1e7, 10.0)).unwrap();
+    let chord = 0.99 * segments as f64;
+    let nodes = add_line(
+        &mut b,
+        [0.0, 0.0, 0.0],
+        [chord, 0.0, 0.0],
+        segments,
+        segments as f64,
+        g,
+        0.0,
+    );
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    // Towed along +x at 1 m/s after a smooth start over 0.1 s.
+    let rows: Vec<[f64; 4]> = (0..=200)
+        .map(|k| {
+            let t = k as f64 * 0.01;
+            let s = t / 0.1;
+            let d = if s < 1.0 {
+                0.1 * (s.powi(3) - 0.5 * s.powi(4))
+            } else {
+                t - 0.05
+            };
+            [t, d, 0.0, 0.0]
+        })
+        .collect();
+    b.prescribe(nodes[segments], Motion::table(&rows).unwrap())
+        .unwrap();
+    (b.build().unwrap(), nodes)
+}
+
+/// Line relaxation (docs/theory/fem.md#line-relaxation) changes the Newton path, not the
+/// answer: with and without it the midpoint rule lands on the same states step by step, and
+/// the step in which the slack line pulls taut takes a few iterations instead of about one per
+/// element.
+#[test]
+fn line_relaxation_settles_a_tightening_line_within_the_iteration() {
+    let segments = 30;
+    let (m, _) = slack_towed_line(segments);
+    let run = |relax: bool| {
+        let mut s = DynamicSettings::new(0.05, 0.6);
+        s.midpoint = true;
+        s.max_iter = 200;
+        s.tol = 1e-9;
+        s.line_relaxation = relax;
+        let mut solver = DynamicSolver::new(&m, s, None, &mut NoLoads).unwrap();
+        let (mut states, mut most) = (Vec::new(), 0usize);
+        while !solver.is_finished() {
+            let r = solver.step(&mut NoLoads).unwrap();
+            most = most.max(r.iterations);
+            states.push(solver.state().x.clone());
+        }
+        let taut = solver.outputs().n_slack() == 0;
+        (states, most, solver.step_control().halvings, taut)
+    };
+    let (relaxed, most_relaxed, halvings_relaxed, taut) = run(true);
+    let (plain, most_plain, halvings_plain, _) = run(false);
+    assert!(taut, "the line should be taut at the end");
+    assert_eq!((halvings_relaxed, halvings_plain), (0, 0));
+    assert_eq!(relaxed.len(), plain.len());
+    let worst = relaxed
+        .iter()
+        .zip(&plain)
+        .flat_map(|(a, b)| a.iter().zip(b))
+        .map(|(p, q)| (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-7, "states differ by {worst} m");
+    // The front runs about one element per iteration without relaxation (13 of the 30 in the
+    // hardest step, measured).
+    assert!(
+        most_plain >= 10,
+        "the plain Newton took at most {most_plain} iterations (relaxed {most_relaxed}): the case does not test the front"
+    );
+    assert!(
+        most_relaxed <= 4,
+        "with relaxation a step took {most_relaxed} iterations (plain: {most_plain})"
+    );
+}

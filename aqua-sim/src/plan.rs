@@ -120,6 +120,7 @@ impl Plan {
                 s.max_strain = d.max_strain;
                 s.reuse_factor = d.reuse_factor;
                 s.linear_solver = d.linear_solver;
+                s.line_relaxation = d.line_relaxation;
                 s.midpoint = d.scheme == crate::scene::Scheme::Midpoint;
                 Integrator::Hht(s)
             }

@@ -420,6 +420,9 @@ pub struct DynamicSpec {
     /// Newton systems: `"symmetric"` (default: L·D·Lᵀ of the symmetric part, refined on the
     /// rest, LU fallback) or `"lu"` (docs/theory/fem.md#sparse-linear-algebra).
     pub linear_solver: aqua_fem::LinearSolverKind,
+    /// Midpoint rule: relax the free lines inside each Newton iteration
+    /// (docs/theory/fem.md#line-relaxation).
+    pub line_relaxation: bool,
 }
 
 /// The nominal HHT step when the scene gives none [s].
@@ -449,6 +452,7 @@ impl Default for DynamicSpec {
             max_strain: hht.max_strain,
             reuse_factor: hht.reuse_factor,
             linear_solver: hht.linear_solver,
+            line_relaxation: hht.line_relaxation,
         }
     }
 }
