@@ -960,7 +960,13 @@ impl<'m> DynamicSolver<'m> {
                         self.full_newton = true;
                         continue;
                     }
-                    if !self.clamp && self.sys.cable.iter().any(|c| c.switch < 1.0) {
+                    // The clamp changes the tangent only where a slack element pushes: with the
+                    // midpoint rule that is rare (tension-only slack elements carry at most
+                    // their damping force), and a retry that cannot differ costs max_iter.
+                    let clamp_matters = |c: &crate::cable::CableEval| {
+                        c.switch < 1.0 && (!self.st.midpoint || c.tension < 0.0)
+                    };
+                    if !self.clamp && self.sys.cable.iter().any(clamp_matters) {
                         // Retry the same step with T ≥ 0 in the slack elements' geometric term.
                         self.clamp = true;
                         continue;

@@ -275,9 +275,10 @@ impl LineRelaxation {
                 kin,
                 sys,
             };
+            // The elements at x^k are those of the evaluation that formed J.
             sc.at_k.clear();
             sc.at_k
-                .extend(line.elems.iter().map(|&ie| ctx.linear(&elements[ie], xk)));
+                .extend(line.elems.iter().map(|&ie| ctx.evaluated(&sys.cable[ie])));
             sc.start.clear();
             sc.start.extend(line.nodes.iter().map(|&i| x[i]));
             if !ctx.remainder(&sc.at_k, xk, x, &sc.start, &mut sc.r, &mut sc.now) {
@@ -379,6 +380,16 @@ impl Ctx<'_, '_> {
         }
         let force_b = if ev.bad { [f64::NAN; 3] } else { ev.force_b };
         ElementLinear { force_b, blk }
+    }
+
+    /// The linearisation of an element as the last evaluation left it.
+    fn evaluated(&self, ev: &cable::CableEval) -> ElementLinear {
+        let c = self.kin.coef;
+        let blk = std::array::from_fn(|i| std::array::from_fn(|j| c.k * ev.k[i][j] + c.c * ev.c[i][j]));
+        ElementLinear {
+            force_b: ev.force_b,
+            blk,
+        }
     }
 
     /// Interior index of chain position c, if c is not an end.
