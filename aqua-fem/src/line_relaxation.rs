@@ -385,7 +385,8 @@ impl Ctx<'_, '_> {
     /// The linearisation of an element as the last evaluation left it.
     fn evaluated(&self, ev: &cable::CableEval) -> ElementLinear {
         let c = self.kin.coef;
-        let blk = std::array::from_fn(|i| std::array::from_fn(|j| c.k * ev.k[i][j] + c.c * ev.c[i][j]));
+        let blk =
+            std::array::from_fn(|i| std::array::from_fn(|j| c.k * ev.k[i][j] + c.c * ev.c[i][j]));
         ElementLinear {
             force_b: ev.force_b,
             blk,
