@@ -77,10 +77,10 @@ def surge(t):
     return ramp * AMPLITUDE * math.sin(2.0 * math.pi * t / PERIOD)
 
 
-def run_aqua(aqua, scene, n, out, zeta, dt):
+def run_aqua(aqua, scene, n, out, zeta, dt, extra=()):
     """Runs aqua once; returns timings and fairlead tension extremes."""
     sets = [f"line.0.segments={n}", f"analysis.dynamic.t_end={T_END}",
-            f"analysis.dynamic.output_interval={DT_OUTPUT}"]
+            f"analysis.dynamic.output_interval={DT_OUTPUT}", *extra]
     if zeta > 0.0:
         sets.append(f"line.0.axial_damping_ratio={zeta}")
     if dt is not None:
@@ -239,6 +239,9 @@ def main():
     p.add_argument("--aqua-zeta", type=float, default=None,
                    help="aqua's axial damping ratio (default --zeta; 0 = the scene's, none)")
     p.add_argument("--aqua-dt", type=float, default=None, help="aqua dt (default the scene's)")
+    p.add_argument("--aqua-set", action="append", default=[], metavar="KEY=VALUE",
+                   help="further scene override for aqua, e.g. "
+                        "analysis.dynamic.line_relaxation=true (repeatable)")
     p.add_argument("--scheme", default="RK2", help="MoorDyn tScheme (default RK2)")
     p.add_argument("--coupling-dt", type=float, default=0.01,
                    help="time between MoorDyn Step calls [s], a divisor of 0.1 (default 0.01)")
@@ -255,7 +258,7 @@ def main():
     (out / "moordyn").mkdir(parents=True, exist_ok=True)
     rows, last = [], None
     for n in a.segments:
-        aq = run_aqua(a.aqua, a.scene, n, out / f"aqua_n{n}", aqua_zeta, a.aqua_dt)
+        aq = run_aqua(a.aqua, a.scene, n, out / f"aqua_n{n}", aqua_zeta, a.aqua_dt, a.aqua_set)
         row = {"segments": n, "aqua_process_s": aq.pop("process_s"),
                "aqua_wall_time_s": aq.pop("wall_s"), "aqua_dynamic_s": aq["dyn_s"]}
         row.update({f"aqua_{k}": v for k, v in aq.items() if k != "dyn_s"})

@@ -61,11 +61,13 @@ pub struct DynamicSettings {
     /// [`LinearSolverKind::Symmetric`].
     #[serde(default)]
     pub linear_solver: LinearSolverKind,
-    /// Midpoint rule: after each Newton update, solve the interior of every free line with
-    /// its ends held, carrying slack-to-taut switches along it within the iteration
-    /// (docs/theory/fem.md#line-relaxation). Default true; HHT-α never relaxes.
-    #[serde(default = "yes")]
-    pub line_relaxation: bool,
+    /// After each Newton update, solve the interior of every free line with its ends held,
+    /// carrying slack-to-taut switches along it within the iteration
+    /// (docs/theory/fem.md#line-relaxation). `None` (default): on for the midpoint rule, off
+    /// for HHT-α, whose step halvings at coarse steps it would remove
+    /// (docs/theory/fem.md#line-relaxation-hht); `Some(b)` for either scheme.
+    #[serde(default)]
+    pub line_relaxation: Option<bool>,
 }
 
 /// The factorisation of the dynamic Newton systems.
@@ -129,10 +131,6 @@ fn one() -> usize {
     1
 }
 
-fn yes() -> bool {
-    true
-}
-
 impl DynamicSettings {
     /// Defaults with step dt [s] and end time t_end [s].
     pub fn new(dt: f64, t_end: f64) -> Self {
@@ -151,7 +149,7 @@ impl DynamicSettings {
             reuse_factor: 1,
             midpoint: false,
             linear_solver: LinearSolverKind::Symmetric,
-            line_relaxation: true,
+            line_relaxation: None,
         }
     }
 
@@ -551,7 +549,7 @@ impl<'m> DynamicSolver<'m> {
         let mut s = Self {
             model,
             lines,
-            relax_lines: settings.midpoint && settings.line_relaxation,
+            relax_lines: settings.line_relaxation.unwrap_or(settings.midpoint),
             x_iter: Vec::new(),
             dt_cur: settings.dt,
             st: settings,
