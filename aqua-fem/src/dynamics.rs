@@ -63,11 +63,11 @@ pub struct DynamicSettings {
     pub linear_solver: LinearSolverKind,
     /// After each Newton update, solve the interior of every free line with its ends held,
     /// carrying slack-to-taut switches along it within the iteration
-    /// (docs/theory/fem.md#line-relaxation). `None` (default): on for the midpoint rule, off
-    /// for HHT-α, whose step halvings at coarse steps it would remove
-    /// (docs/theory/fem.md#line-relaxation-hht); `Some(b)` for either scheme.
-    #[serde(default)]
-    pub line_relaxation: Option<bool>,
+    /// (docs/theory/fem.md#line-relaxation). Default true; with HHT-α a step in which a line
+    /// tightens across more than `HHT_FRONT_ELEMENTS` elements is halved
+    /// (docs/theory/fem.md#line-relaxation-hht).
+    #[serde(default = "yes")]
+    pub line_relaxation: bool,
 }
 
 /// The factorisation of the dynamic Newton systems.
@@ -124,11 +124,20 @@ const LANDING_ROUNDOFF: f64 = 1e-9;
 /// (docs/theory/fem.md#line-relaxation).
 const LINE_FLOOR: f64 = 1e-2;
 
+/// HHT-α with line relaxation: a step in which one line's relaxation took more local
+/// iterations than this (a tightening front crossing about as many elements) is halved
+/// (docs/theory/fem.md#line-relaxation-hht).
+const HHT_FRONT_ELEMENTS: usize = 10;
+
 /// Smallest fraction of a Newton update that backtracking tries.
 const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
 
 fn one() -> usize {
     1
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl DynamicSettings {
@@ -149,7 +158,7 @@ impl DynamicSettings {
             reuse_factor: 1,
             midpoint: false,
             linear_solver: LinearSolverKind::Symmetric,
-            line_relaxation: None,
+            line_relaxation: true,
         }
     }
 
@@ -549,7 +558,7 @@ impl<'m> DynamicSolver<'m> {
         let mut s = Self {
             model,
             lines,
-            relax_lines: settings.line_relaxation.unwrap_or(settings.midpoint),
+            relax_lines: settings.line_relaxation,
             x_iter: Vec::new(),
             dt_cur: settings.dt,
             st: settings,
@@ -1231,6 +1240,18 @@ impl<'m> DynamicSolver<'m> {
                     LINE_FLOOR * tol,
                 );
                 dx_prev = dx_prev.max(moved);
+                if !midpoint && self.lines.last_front > HHT_FRONT_ELEMENTS {
+                    // The plain Newton iteration would have failed here: for HHT-α that
+                    // failure, and the halving it forces, is what resolves the event
+                    // (docs/theory/fem.md#line-relaxation-hht).
+                    return Err(fail(
+                        format!(
+                            "a line tightened across more than {HHT_FRONT_ELEMENTS} elements \
+                             within the step"
+                        ),
+                        &hist,
+                    ));
+                }
             }
         }
         Err(fail(

@@ -34,6 +34,9 @@ const MAX_LOCAL_ITERATIONS: usize = 60;
 /// below the caller's floor).
 const LOCAL_REDUCTION: f64 = 1e-6;
 
+/// Strain above which an element that was slack counts as tightened [-].
+pub(crate) const TIGHTENED_STRAIN: f64 = 1e-6;
+
 /// One line: interior nodes in order, its ends, its elements in order and the positions of
 /// its Jacobian blocks in the global matrix.
 #[derive(Debug)]
@@ -77,6 +80,10 @@ pub(crate) struct LineRelaxation {
     /// Line solves that were kept / left at the global update.
     pub kept: usize,
     pub reverted: usize,
+    /// Most local iterations of one line in the last `relax` among the lines in which an
+    /// element that was slack at x^k ended taut (strain ≥ [`TIGHTENED_STRAIN`]): a
+    /// tightening front moves about one element per local iteration.
+    pub last_front: usize,
 }
 
 /// Buffers of one line's local solve, kept between calls (no allocation per iteration).
@@ -266,6 +273,7 @@ impl LineRelaxation {
         floor: f64,
     ) -> f64 {
         let mut largest = 0.0f64;
+        self.last_front = 0;
         let elements = model.elements();
         let sc = &mut self.scratch;
         for line in &self.lines {
@@ -310,6 +318,14 @@ impl LineRelaxation {
             self.local_iterations += iterations;
             if rn.is_finite() && rn < r0 {
                 self.kept += 1;
+                let tightened = line.elems.iter().any(|&ie| {
+                    let e = &elements[ie];
+                    sys.cable[ie].strain <= 0.0
+                        && norm(sub(x[e.b], x[e.a])) >= (1.0 + TIGHTENED_STRAIN) * e.l0
+                });
+                if tightened {
+                    self.last_front = self.last_front.max(iterations);
+                }
                 for (p, &i) in line.nodes.iter().enumerate() {
                     for k in 0..3 {
                         largest = largest.max((x[i][k] - sc.start[p][k]).abs());

@@ -420,10 +420,8 @@ pub struct DynamicSpec {
     /// Newton systems: `"symmetric"` (default: L·D·Lᵀ of the symmetric part, refined on the
     /// rest, LU fallback) or `"lu"` (docs/theory/fem.md#sparse-linear-algebra).
     pub linear_solver: aqua_fem::LinearSolverKind,
-    /// Relax the free lines inside each Newton iteration (docs/theory/fem.md#line-relaxation);
-    /// unset: on for the midpoint rule, off for HHT-α.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub line_relaxation: Option<bool>,
+    /// Relax the free lines inside each Newton iteration (docs/theory/fem.md#line-relaxation).
+    pub line_relaxation: bool,
 }
 
 /// The nominal HHT step when the scene gives none [s].
