@@ -125,8 +125,8 @@ const LANDING_ROUNDOFF: f64 = 1e-9;
 const LINE_FLOOR: f64 = 1e-2;
 
 /// HHT-α with line relaxation: a step in which one line's relaxation took more local
-/// iterations than this (a tightening front crossing about as many elements) is halved
-/// (docs/theory/fem.md#line-relaxation-hht).
+/// iterations than this while an element of it that was slack ended taut (a tightening front
+/// crossing about as many elements) is halved (docs/theory/fem.md#line-relaxation-hht).
 const HHT_FRONT_ELEMENTS: usize = 10;
 
 /// Smallest fraction of a Newton update that backtracking tries.

@@ -35,7 +35,7 @@ const MAX_LOCAL_ITERATIONS: usize = 60;
 const LOCAL_REDUCTION: f64 = 1e-6;
 
 /// Strain above which an element that was slack counts as tightened [-].
-pub(crate) const TIGHTENED_STRAIN: f64 = 1e-6;
+const TIGHTENED_STRAIN: f64 = 1e-6;
 
 /// One line: interior nodes in order, its ends, its elements in order and the positions of
 /// its Jacobian blocks in the global matrix.
