@@ -331,6 +331,7 @@ struct StaticKeys {
     min_load_step: f64,
     stabilisation: f64,
     line_search: bool,
+    watchdog: bool,
     #[serde(skip)]
     time: f64,
     #[serde(skip)]
