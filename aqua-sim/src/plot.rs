@@ -89,7 +89,17 @@ fn range(lo: f64, hi: f64) -> (f64, f64) {
     (lo - 0.05 * span, hi + 0.05 * span)
 }
 
-/// A line chart of `series` against x, linear axes, legend top right.
+/// Most curves in one time-series picture (the legend must fit above them); a group with more
+/// shows those with the largest peaks.
+const MAX_CURVES: usize = 8;
+
+/// Fraction of a chart's plotting height that a legend of `n` rows takes (16 px font: about
+/// 21 px per row and 26 px of box and margin, in a plotting area of about 560 px of `SIZE`).
+fn legend_fraction(n: usize) -> f64 {
+    ((21 * n + 26) as f64 / 560.0).min(0.6)
+}
+
+/// A line chart of `series` against x, linear axes, legend top right above the curves.
 pub fn line_chart(
     path: &Path,
     title: &str,
@@ -111,6 +121,8 @@ pub fn line_chart(
             .map(|s| s.max)
             .fold(f64::NEG_INFINITY, f64::max),
     );
+    // Room above the curves for the legend, so that it covers none of them.
+    let y1 = y0 + (y1 - y0) / (1.0 - legend_fraction(series.len()));
     {
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
@@ -368,9 +380,11 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
             ),
             (
                 "line_ends.png",
-                "Line-end loads (anchor and fairlead reactions)",
+                "Line-end loads (anchor reaction, fairlead tension)",
                 "force [N]",
-                |c| c.ends_with("_anchor_reaction") || c.ends_with("_fairlead_reaction"),
+                // The fairlead's element tension, not its reaction: a fairlead attached to a
+                // collar or plate has no reaction (the column is 0), only a line tension.
+                |c| c.ends_with("_anchor_reaction") || c.ends_with("_fairlead_element_tension"),
             ),
             (
                 "volume.png",
@@ -385,9 +399,25 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
                 // An open net (no enclosed volume) has nothing to show.
                 series.retain(|s| s.max > 0.0);
             }
-            if !series.is_empty() {
-                pictures.push(line_chart(&out.join(file), title, "time t [s]", y, series)?);
+            if series.is_empty() {
+                continue;
             }
+            let title = if series.len() > MAX_CURVES {
+                // A farm has dozens of line ends: draw the most loaded, say how many there are.
+                let n = series.len();
+                series.sort_by(|a, b| b.max.total_cmp(&a.max));
+                series.truncate(MAX_CURVES);
+                format!("{title}: the {MAX_CURVES} largest of {n}")
+            } else {
+                title.to_string()
+            };
+            pictures.push(line_chart(
+                &out.join(file),
+                &title,
+                "time t [s]",
+                y,
+                series,
+            )?);
         }
     }
     if let Some(history) = static_history(&dir.join("run.json")) {
@@ -554,4 +584,60 @@ pub fn plot_study(study: &Study, path: &Path) -> Result<Picture> {
         title: "accuracy against cost".into(),
         series: vec![series],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A farm-like run folder with more line ends than a legend can hold: the picture keeps
+    /// the curves with the largest peaks, says how many there were, leaves the all-zero
+    /// reaction columns of attached fairleads out, and puts its legend above the curves.
+    #[test]
+    fn many_line_ends_keep_the_most_loaded_above_the_legend() {
+        let dir = std::env::temp_dir().join(format!("aqua-plot-many-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let n = 12;
+        let mut header = vec!["t".to_string()];
+        for i in 0..n {
+            header.push(format!("l{i}_anchor_reaction"));
+            header.push(format!("l{i}_fairlead_reaction"));
+            header.push(format!("l{i}_fairlead_element_tension"));
+        }
+        let mut text = header.join(",") + "\n";
+        for k in 0..3 {
+            let mut row = vec![format!("{k}")];
+            for i in 0..n {
+                let peak = 1000.0 * (i + 1) as f64;
+                row.push(format!("{}", 0.5 * peak + k as f64));
+                row.push("0".into());
+                row.push(format!("{}", peak - k as f64));
+            }
+            text += &(row.join(",") + "\n");
+        }
+        std::fs::write(dir.join("summary.csv"), text).unwrap();
+        let pictures = plot_run(&dir).unwrap();
+        let ends = pictures
+            .iter()
+            .find(|p| p.path.ends_with("line_ends.png"))
+            .unwrap();
+        assert!(
+            ends.title.ends_with("the 8 largest of 24"),
+            "{}",
+            ends.title
+        );
+        assert_eq!(ends.series.len(), MAX_CURVES);
+        // Largest peaks first: the fairlead tensions of lines 11, 10, … then anchor reactions.
+        let peaks: Vec<f64> = ends.series.iter().map(|s| s.max).collect();
+        assert!(peaks.windows(2).all(|w| w[0] >= w[1]), "{peaks:?}");
+        assert_eq!(ends.series[0].name, "l11_fairlead_element_tension");
+        assert!(
+            ends.series
+                .iter()
+                .all(|s| !s.name.ends_with("_fairlead_reaction"))
+        );
+        // Legend room: the curves stay in the lower (1 − legend fraction) of the y range.
+        assert!(legend_fraction(MAX_CURVES) < 0.5);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
