@@ -636,7 +636,7 @@ mod tests {
                 .iter()
                 .all(|s| !s.name.ends_with("_fairlead_reaction"))
         );
-        // Legend room: the curves stay in the lower (1 − legend fraction) of the y range.
+        // Legend room: 8 rows of legend leave the curves at least half of the y range.
         assert!(legend_fraction(MAX_CURVES) < 0.5);
         let _ = std::fs::remove_dir_all(&dir);
     }
