@@ -12,19 +12,23 @@
 //! ```
 //!
 //! vanishes on the interior rows: the global linear model that the Newton update satisfied,
-//! plus the nonlinear remainder of the line's own cable forces F (w = 1 for the midpoint rule,
-//! 1 − α for HHT-α; J_F their part of the Jacobian). Everything else (inertia, water loads,
-//! seabed) keeps its linearisation. A tension-only element that the update stretches from
+//! plus the nonlinear remainder of the line's own cable forces and of the seabed's normal force
+//! on its interior nodes, F (w = 1 for the midpoint rule, 1 − α for HHT-α; J_F their part of
+//! the Jacobian). Everything else (inertia, water loads, seabed friction) keeps its
+//! linearisation. A tension-only element that the update stretches from
 //! slack to taut makes this remainder large, and the local Newton iterations that remove it —
 //! one block-tridiagonal solve each, microseconds for a line of 40 elements — carry the
 //! tightening along the line, which the global Newton would do one element per factorisation.
+//! The seabed's kink at touchdown is settled the same way: a node that the update moves
+//! across the bed plane (or through the damping ramp) would otherwise make the global
+//! iteration converge linearly there.
 //! Near the solution the remainder is O(|Δx|²), so Newton's quadratic convergence is kept.
 //! A line whose local solve ends with a larger remainder than it began with is left at
 //! x^{k+1}.
 
 use crate::cable;
 use crate::model::{Cable, Model};
-use crate::system::{Coef, NONE, System, norm, sub};
+use crate::system::{BedLaw, Coef, NONE, System, norm, sub};
 use nalgebra::{Matrix3, Vector3};
 
 /// Local Newton iterations per line and global iteration.
@@ -47,6 +51,8 @@ struct Line {
     elems: Vec<usize>,
     /// Position in `values` of block (i, j), row-major 3×3, for j = i − 1, i, i + 1.
     blocks: Vec<[[usize; 9]; 3]>,
+    /// Interior positions of the nodes that can touch the seabed.
+    bed: Vec<usize>,
 }
 
 /// The kinematics of the step that turn x_{n+1} into the state the equations are evaluated
@@ -99,6 +105,10 @@ struct Scratch {
     upper: Vec<Matrix3<f64>>,
     inv: Vec<Matrix3<f64>>,
     rhs: Vec<Vector3<f64>>,
+    /// Per bed node of the line: the seabed's q-sense force −f_z and its Jacobian entry at x^k,
+    /// and that entry at the current x.
+    bed_k: Vec<(f64, f64)>,
+    bed_now: Vec<f64>,
 }
 
 /// One element's force on its node b (q sense, unweighted) and its Jacobian block.
@@ -151,6 +161,7 @@ impl LineRelaxation {
         }
         let mut seen = vec![false; n];
         let mut lines = Vec::new();
+        let law = BedLaw::new(model, true);
         for start in 0..n {
             if !eligible[start] || seen[start] {
                 continue;
@@ -241,11 +252,15 @@ impl LineRelaxation {
                 blocks.push(b);
             }
             if complete {
+                let bed = (0..nodes.len())
+                    .filter(|&p| law.acts_on(model, nodes[p]))
+                    .collect();
                 lines.push(Line {
                     nodes,
                     ends: [end0, end1],
                     elems,
                     blocks,
+                    bed,
                 });
             }
         }
@@ -276,20 +291,35 @@ impl LineRelaxation {
         self.last_front = 0;
         let elements = model.elements();
         let sc = &mut self.scratch;
+        let bed = BedLaw::new(model, true);
+        // The midpoint rule keeps the seabed linearised: with its discrete-gradient contact the
+        // local solves made Newton fail on a chain landing on the bed
+        // (docs/theory/fem.md#line-relaxation).
+        let bed_nodes: &[usize] = &[];
         for line in &self.lines {
+            let bed_nodes = if kin.midpoint { bed_nodes } else { &line.bed };
             let ctx = Ctx {
                 line,
                 elements,
                 kin,
                 sys,
+                model,
+                bed,
+                bed_nodes,
             };
             // The elements at x^k are those of the evaluation that formed J.
             sc.at_k.clear();
             sc.at_k
                 .extend(line.elems.iter().map(|&ie| ctx.evaluated(&sys.cable[ie])));
+            sc.bed_k.clear();
+            sc.bed_k.extend(
+                bed_nodes
+                    .iter()
+                    .map(|&p| ctx.bed_linear(line.nodes[p], xk[line.nodes[p]])),
+            );
             sc.start.clear();
             sc.start.extend(line.nodes.iter().map(|&i| x[i]));
-            if !ctx.remainder(&sc.at_k, xk, x, &sc.start, &mut sc.r, &mut sc.now) {
+            if !ctx.remainder(sc, xk, x) {
                 continue;
             }
             let r0 = block_norm(&sc.r);
@@ -309,7 +339,7 @@ impl LineRelaxation {
                         x[i][k] -= d[k];
                     }
                 }
-                if !ctx.remainder(&sc.at_k, xk, x, &sc.start, &mut sc.r, &mut sc.now) {
+                if !ctx.remainder(sc, xk, x) {
                     rn = f64::INFINITY;
                     break;
                 }
@@ -348,6 +378,10 @@ struct Ctx<'a, 'b> {
     elements: &'a [Cable],
     kin: &'a StepKinematics<'b>,
     sys: &'a System,
+    model: &'a Model,
+    bed: BedLaw,
+    /// Interior positions whose seabed force is relaxed with the cables.
+    bed_nodes: &'a [usize],
 }
 
 impl Ctx<'_, '_> {
@@ -398,6 +432,15 @@ impl Ctx<'_, '_> {
         ElementLinear { force_b, blk }
     }
 
+    /// The seabed at node i with end position `xi`: its q-sense force −f_z and its entry in J,
+    /// as `System::evaluate` and `assemble_jacobian` form them.
+    fn bed_linear(&self, i: usize, xi: [f64; 3]) -> (f64, f64) {
+        let (xe, ve) = self.eval_state(i, xi);
+        let secant = self.kin.midpoint.then(|| (self.kin.xn[i][2], xi[2]));
+        let (f, kz, cz) = self.bed.node(self.model, i, xe[2], ve[2], secant);
+        (-f, self.kin.coef.k * kz + self.kin.coef.c * cz)
+    }
+
     /// The linearisation of an element as the last evaluation left it.
     fn evaluated(&self, ev: &cable::CableEval) -> ElementLinear {
         let c = self.kin.coef;
@@ -428,15 +471,8 @@ impl Ctx<'_, '_> {
 
     /// r_loc on the interior rows at `x` into `r` and the elements' linearisations there into
     /// `now`; false when an element is degenerate or a force non-finite.
-    fn remainder(
-        &self,
-        at_k: &[ElementLinear],
-        xk: &[[f64; 3]],
-        x: &[[f64; 3]],
-        start: &[[f64; 3]],
-        r: &mut Vec<[f64; 3]>,
-        now: &mut Vec<ElementLinear>,
-    ) -> bool {
+    fn remainder(&self, sc: &mut Scratch, xk: &[[f64; 3]], x: &[[f64; 3]]) -> bool {
+        let (at_k, start, r, now) = (&sc.at_k, &sc.start, &mut sc.r, &mut sc.now);
         let line = self.line;
         let m = line.nodes.len();
         let vals = &self.sys.values;
@@ -495,6 +531,18 @@ impl Ctx<'_, '_> {
             }
             now.push(lin);
         }
+        // The seabed's nonlinear remainder (its kink at touchdown and the damping ramp).
+        sc.bed_now.clear();
+        for (b, &p) in self.bed_nodes.iter().enumerate() {
+            let i = line.nodes[p];
+            let (q, jz) = self.bed_linear(i, x[i]);
+            let (qk, jk) = sc.bed_k[b];
+            if !q.is_finite() {
+                return false;
+            }
+            r[p][2] += w * (q - qk) - jk * (x[i][2] - xk[i][2]);
+            sc.bed_now.push(jz);
+        }
         true
     }
 
@@ -536,6 +584,9 @@ impl Ctx<'_, '_> {
                 sc.upper[p] -= d;
                 sc.lower[q] -= d;
             }
+        }
+        for (b, &p) in self.bed_nodes.iter().enumerate() {
+            sc.diag[p][(2, 2)] += sc.bed_now[b] - sc.bed_k[b].1;
         }
         // Block forward elimination and back substitution.
         sc.rhs.clear();

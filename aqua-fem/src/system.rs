@@ -551,53 +551,14 @@ impl System {
             }
         }
         // Seabed.
-        let mut bed_k = 0.0;
-        let mut bed_c = 0.0;
-        let mut zs = f64::NEG_INFINITY;
-        let mut ramp = 1.0;
-        if let Some(s) = model.env.seabed {
-            zs = -s.depth;
-            bed_k = s.stiffness;
-            bed_c = if o.dynamic { s.damping } else { 0.0 };
-            ramp = s.damping_depth;
-        }
+        let bed = BedLaw::new(model, o.dynamic);
         let secant = self.secant.as_ref();
         for i in 0..n {
-            self.bed_kz[i] = 0.0;
-            self.bed_cz[i] = 0.0;
-            let d = zs - x[i][2];
-            let coef = model.bed_coef[i];
-            let kb = bed_k * coef;
-            let kp = model.bed_point[i];
-            if let Some((x0, x1)) = secant {
-                // Energy-consistent contact for the midpoint rule: the discrete gradient of
-                // ½·k·max(z_s − z, 0)² between the step's ends, its tangent 2·∂f/∂z1
-                // (docs/theory/fem.md#energy-consistent-midpoint).
-                let (z0, z1) = (x0[i][2], x1[i][2]);
-                let (fe, ke) = bed_discrete_gradient(kb, zs, z0, z1);
-                let (s, ds) = damping_ramp(d, ramp);
-                let fd = -bed_c * coef * s * v[i][2];
-                if fe + fd > 0.0 {
-                    self.fbed[i][2] += fe + fd;
-                    // Stored as −∂f/∂z_m = 2·(−∂f/∂z1), like `ke`.
-                    self.bed_kz[i] += ke - bed_c * coef * ds * v[i][2];
-                    self.bed_cz[i] += bed_c * coef * s;
-                }
-                let (fp, kpp) = bed_discrete_gradient(kp, zs, z0, z1);
-                self.fbed[i][2] += fp;
-                self.bed_kz[i] += kpp;
-            } else if d > 0.0 {
-                // The damping ramps in over δ_c so that f is continuous at touchdown.
-                let (s, ds) = damping_ramp(d, ramp);
-                let f = kb * d - bed_c * coef * s * v[i][2];
-                if f > 0.0 {
-                    self.fbed[i][2] += f;
-                    self.bed_kz[i] += kb - bed_c * coef * ds * v[i][2];
-                    self.bed_cz[i] += bed_c * coef * s;
-                }
-                self.fbed[i][2] += kp * d;
-                self.bed_kz[i] += kp;
-            }
+            let ends = secant.map(|(x0, x1)| (x0[i][2], x1[i][2]));
+            let (f, kz, cz) = bed.node(model, i, x[i][2], v[i][2], ends);
+            self.fbed[i][2] += f;
+            self.bed_kz[i] = kz;
+            self.bed_cz[i] = cz;
         }
         self.seabed_friction(model, x, v, o.dynamic);
         let a_m = if o.dynamic { o.rayleigh.0 } else { 0.0 };
@@ -1175,6 +1136,89 @@ fn load_element<P: LoadProvider + ?Sized>(
         });
     }
     Ok(())
+}
+
+/// The seabed's normal law (docs/theory/fem.md#seabed-contact): one definition for the
+/// evaluation of the whole structure and for the line relaxation's local solves.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BedLaw {
+    /// Bed height z_s [m] (−∞ without a seabed).
+    zs: f64,
+    /// k_b [Pa/m] and c_b [Pa·s/m] (0 in statics).
+    k: f64,
+    c: f64,
+    /// Damping ramp depth δ_c [m].
+    ramp: f64,
+}
+
+impl BedLaw {
+    pub(crate) fn new(model: &Model, dynamic: bool) -> Self {
+        match model.env.seabed {
+            Some(s) => Self {
+                zs: -s.depth,
+                k: s.stiffness,
+                c: if dynamic { s.damping } else { 0.0 },
+                ramp: s.damping_depth,
+            },
+            None => Self {
+                zs: f64::NEG_INFINITY,
+                k: 0.0,
+                c: 0.0,
+                ramp: 1.0,
+            },
+        }
+    }
+
+    /// Whether node i can touch the bed at all.
+    pub(crate) fn acts_on(&self, model: &Model, i: usize) -> bool {
+        self.zs.is_finite() && (model.bed_coef[i] > 0.0 || model.bed_point[i] > 0.0)
+    }
+
+    /// Upward force f_z [N] on node i at height z [m] and vertical velocity v_z [m/s], with
+    /// −∂f_z/∂z [N/m] and −∂f_z/∂v_z [N·s/m]. `secant`: the step's end heights (z_n, z_{n+1})
+    /// for the midpoint rule's discrete gradient, whose stiffness is stored as −∂f/∂z_m.
+    pub(crate) fn node(
+        &self,
+        model: &Model,
+        i: usize,
+        z: f64,
+        vz: f64,
+        secant: Option<(f64, f64)>,
+    ) -> (f64, f64, f64) {
+        let d = self.zs - z;
+        let coef = model.bed_coef[i];
+        let kb = self.k * coef;
+        let kp = model.bed_point[i];
+        let (mut f, mut kz, mut cz) = (0.0, 0.0, 0.0);
+        if let Some((z0, z1)) = secant {
+            // Energy-consistent contact for the midpoint rule: the discrete gradient of
+            // ½·k·max(z_s − z, 0)² between the step's ends, its tangent 2·∂f/∂z1
+            // (docs/theory/fem.md#energy-consistent-midpoint).
+            let (fe, ke) = bed_discrete_gradient(kb, self.zs, z0, z1);
+            let (s, ds) = damping_ramp(d, self.ramp);
+            let fd = -self.c * coef * s * vz;
+            if fe + fd > 0.0 {
+                f += fe + fd;
+                kz += ke - self.c * coef * ds * vz;
+                cz += self.c * coef * s;
+            }
+            let (fp, kpp) = bed_discrete_gradient(kp, self.zs, z0, z1);
+            f += fp;
+            kz += kpp;
+        } else if d > 0.0 {
+            // The damping ramps in over δ_c so that f is continuous at touchdown.
+            let (s, ds) = damping_ramp(d, self.ramp);
+            let fk = kb * d - self.c * coef * s * vz;
+            if fk > 0.0 {
+                f += fk;
+                kz += kb - self.c * coef * ds * vz;
+                cz += self.c * coef * s;
+            }
+            f += kp * d;
+            kz += kp;
+        }
+        (f, kz, cz)
+    }
 }
 
 /// The seabed damping's ramp s(δ) = min(1, δ/δ_c) for δ > 0 (0 otherwise) and ds/dδ
