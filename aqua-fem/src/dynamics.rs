@@ -102,6 +102,9 @@ pub struct LinearSolverStats {
     pub line_solves_reverted: usize,
     /// Block-tridiagonal local Newton iterations over all line solves.
     pub line_iterations: usize,
+    /// Convergence checks solved with the last factor and its J, without forming a new J
+    /// (simplified Newton corrections; docs/theory/fem.md#convergence-check).
+    pub stale_checks: usize,
 }
 
 /// A Newton update's linear solve may leave a residual of this fraction of the Newton
@@ -321,6 +324,8 @@ pub struct DynamicSolver<'m> {
     /// Iterations of the current attempt that used a factorisation formed before them
     /// (modified Newton).
     attempt_stale_solves: usize,
+    /// Convergence checks with the last factor over the run.
+    stale_checks: usize,
     /// ‖r₁‖/‖r₀‖ of the last accepted step (NaN before one): predicts the first update's
     /// nonlinear remainder for the inexact solve.
     first_contraction: f64,
@@ -587,6 +592,7 @@ impl<'m> DynamicSolver<'m> {
             lu_uses: 0,
             attempt_factorisations: 0,
             attempt_stale_solves: 0,
+            stale_checks: 0,
             first_contraction: f64::NAN,
             full_newton: false,
             trial: Outputs::new(model),
@@ -686,6 +692,7 @@ impl<'m> DynamicSolver<'m> {
             line_solves_kept: self.lines.kept,
             line_solves_reverted: self.lines.reverted,
             line_iterations: self.lines.local_iterations,
+            stale_checks: self.stale_checks,
         }
     }
     /// What the step control did so far.
@@ -1068,6 +1075,8 @@ impl<'m> DynamicSolver<'m> {
         // Scale of the last update applied (0: none yet) and how often the residual rose.
         let mut step_scale = 0.0f64;
         let mut increases = 0usize;
+        // The last update was made with a fresh J and is expected to end the step.
+        let mut expect_done = false;
         let fail = |reason: String, hist: &Vec<f64>| Attempt {
             reason,
             history: hist.clone(),
@@ -1089,7 +1098,11 @@ impl<'m> DynamicSolver<'m> {
             // Modified Newton: keep the stored factorisation while it is fresh enough; then
             // the Jacobian need not be assembled.
             let mut refactor = !(reuse > 1 && self.lu_valid && self.lu_uses < reuse);
-            let oe = if refactor { &o } else { &o_res };
+            // When the last update is expected to have converged the step, the evaluation
+            // forms no Jacobian: the check that ends the step is the simplified Newton
+            // correction with the factor just used (docs/theory/fem.md#convergence-check).
+            let lazy = refactor && expect_done && self.lu_valid && self.lu_h == h;
+            let oe = if refactor && !lazy { &o } else { &o_res };
             if let Err(e) = self.evaluate_at_step(provider, oe) {
                 return Err(fail(e.to_string(), &hist));
             }
@@ -1112,6 +1125,13 @@ impl<'m> DynamicSolver<'m> {
                 return Err(fail("residual grew by more than 1e4".into(), &hist));
             }
             let tol = self.st.tol * f_ref;
+            if lazy {
+                if rn <= tol {
+                    refactor = false;
+                } else if let Err(e) = self.evaluate_at_step(provider, &o) {
+                    return Err(fail(e.to_string(), &hist));
+                }
+            }
             let max_strain = self.st.max_strain;
             let strain_check = |sys: &System, hist: &Vec<f64>| match sys
                 .cable
@@ -1143,7 +1163,7 @@ impl<'m> DynamicSolver<'m> {
                     continue;
                 }
             }
-            if !refactor && it > 0 && rn > 0.5 * rn_prev {
+            if !refactor && !lazy && it > 0 && rn > 0.5 * rn_prev {
                 // Contraction below 2×: re-form J at this iterate.
                 refactor = true;
                 if let Err(e) = self.evaluate_at_step(provider, &o) {
@@ -1160,7 +1180,9 @@ impl<'m> DynamicSolver<'m> {
                 self.lu_uses = 0;
                 self.attempt_factorisations += 1;
             }
-            if !refactor {
+            if lazy && !refactor {
+                self.stale_checks += 1;
+            } else if !refactor {
                 self.attempt_stale_solves += 1;
             }
             self.lu_uses += 1;
@@ -1213,6 +1235,7 @@ impl<'m> DynamicSolver<'m> {
             }
             step_scale = 1.0;
             dx_prev = dinf;
+            expect_done = refactor && (rn <= tol || (q <= EW_REGIME && predicted <= tol));
             if relax {
                 // Carry slack-to-taut switches along the lines before the next evaluation
                 // (docs/theory/fem.md#line-relaxation).
