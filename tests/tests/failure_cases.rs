@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{scratch, summary};
+use common::{run_json, scratch, summary};
 use std::path::{Path, PathBuf};
 
 const G: f64 = 9.81;
@@ -16,10 +16,6 @@ fn run(dir: &Path, name: &str, text: &str) -> (PathBuf, Option<String>) {
     let out = dir.join(format!("{name}-out"));
     let r = aqua_cli::commands::run::run_scene(&scene, &[], &out, true);
     (out, r.err().map(|e| format!("{e:#}")))
-}
-
-fn run_json(out: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap()
 }
 
 fn max_of(out: &Path, prefix: &str) -> f64 {

@@ -76,8 +76,7 @@ fn coarse_sagging_lines_are_warned_about_and_straight_ones_are_not() {
         example("mooring-chain.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
     let warnings = |name: &str, text: &str| -> Vec<String> {
         let out = run_text(&dir, name, text);
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        let json = run_json(&out);
         json["diagnostics"]
             .as_array()
             .unwrap()
@@ -130,8 +129,7 @@ fn fine_chains_reach_the_elastic_catenary_within_bounded_iterations() {
             .replace("segments = 80", &format!("segments = {segments}"));
         let out = run_text(&dir, &format!("n{segments}"), &text);
         let row = &summary(&out)[0];
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        let json = run_json(&out);
         let iterations = json["static_newton_iterations"].as_u64().unwrap();
         assert!(
             iterations <= bound,
@@ -172,8 +170,7 @@ fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
             &format!("[analysis.dynamic]\nlinear_solver = \"{solver}\""),
         );
         let out = run_text(&dir, name, &text);
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        let json = run_json(&out);
         json
     };
     let (sym, lu) = (run("sym", "symmetric"), run("lu", "lu"));
@@ -216,8 +213,7 @@ fn the_surged_chain_takes_one_update_and_one_check_per_step() {
             &format!("[analysis.dynamic]\ntol = {tol:e}"),
         );
         let out = run_text(&dir, name, &text);
-        let json: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+        let json = run_json(&out);
         let rows = summary(&out);
         let fair: Vec<f64> = rows[1..]
             .iter()

@@ -34,6 +34,11 @@ pub fn run_file(scene: &Path, out: &Path) -> PathBuf {
 }
 
 /// summary.csv as rows of column → value.
+/// `run.json` of a run's output folder.
+pub fn run_json(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap()
+}
+
 pub fn summary(out: &Path) -> Vec<HashMap<String, f64>> {
     let text = std::fs::read_to_string(out.join("summary.csv")).unwrap();
     let mut lines = text.lines();
