@@ -170,8 +170,7 @@ fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
             &format!("[analysis.dynamic]\nlinear_solver = \"{solver}\""),
         );
         let out = run_text(&dir, name, &text);
-        let json = run_json(&out);
-        json
+        run_json(&out)
     };
     let (sym, lu) = (run("sym", "symmetric"), run("lu", "lu"));
     let its = |j: &serde_json::Value| j["newton_iterations"].as_f64().unwrap();
