@@ -12,16 +12,16 @@
 //! ```
 //!
 //! vanishes on the interior rows: the global linear model that the Newton update satisfied,
-//! plus the nonlinear remainder of the line's own cable forces and of the seabed's normal force
-//! on its interior nodes, F (w = 1 for the midpoint rule, 1 − α for HHT-α; J_F their part of
-//! the Jacobian). Everything else (inertia, water loads, seabed friction) keeps its
-//! linearisation. A tension-only element that the update stretches from
+//! plus the nonlinear remainder of the line's own cable forces and, with HHT-α, of the seabed's
+//! normal force on its interior nodes, F (w = 1 for the midpoint rule, 1 − α for HHT-α; J_F
+//! their part of the Jacobian). Everything else (inertia, water loads, seabed friction, and the
+//! seabed with the midpoint rule) keeps its linearisation. A tension-only element that the update stretches from
 //! slack to taut makes this remainder large, and the local Newton iterations that remove it —
 //! one block-tridiagonal solve each, microseconds for a line of 40 elements — carry the
 //! tightening along the line, which the global Newton would do one element per factorisation.
 //! The seabed's kink at touchdown is settled the same way: a node that the update moves
 //! across the bed plane (or through the damping ramp) would otherwise make the global
-//! iteration converge linearly there.
+//! iteration converge linearly there (docs/theory/fem.md#line-relaxation-seabed).
 //! Near the solution the remainder is O(|Δx|²), so Newton's quadratic convergence is kept.
 //! A line whose local solve ends with a larger remainder than it began with is left at
 //! x^{k+1}.
@@ -294,7 +294,7 @@ impl LineRelaxation {
         let bed = BedLaw::new(model, true);
         // The midpoint rule keeps the seabed linearised: with its discrete-gradient contact the
         // local solves made Newton fail on a chain landing on the bed
-        // (docs/theory/fem.md#line-relaxation).
+        // (docs/theory/fem.md#line-relaxation-seabed).
         let bed_nodes: &[usize] = &[];
         for line in &self.lines {
             let bed_nodes = if kin.midpoint { bed_nodes } else { &line.bed };
