@@ -148,6 +148,18 @@ fn fine_chains_reach_the_elastic_catenary_within_bounded_iterations() {
     }
 }
 
+/// The bundled chain at 160 segments with axial damping ratio 1 (the MoorDyn benchmark's line),
+/// surged for `t_end` seconds.
+fn surged_chain(t_end: f64) -> String {
+    example("mooring-chain.toml")
+        .replace("segments = 80", "segments = 160")
+        .replace("t_end = 60.0", &format!("t_end = {t_end:.1}"))
+        .replace(
+            "added_mass = 1.0",
+            "added_mass = 1.0\naxial_damping_ratio = 1.0",
+        )
+}
+
 /// The inexact solve's forcing term (docs/theory/fem.md#sparse-linear-algebra): on the surged
 /// 160-segment chain, where each step's first updates leave remainders far above the Newton
 /// tolerance, the symmetric refinement stops at a tenth of the predicted remainder. It must take
@@ -156,14 +168,7 @@ fn fine_chains_reach_the_elastic_catenary_within_bounded_iterations() {
 #[test]
 fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
     let dir = scratch("chain-forcing");
-    let base = example("mooring-chain.toml")
-        .replace("segments = 80", "segments = 160")
-        .replace("t_end = 60.0", "t_end = 10.0")
-        .replace("output_interval = 0.5", "output_interval = 5.0")
-        .replace(
-            "added_mass = 1.0",
-            "added_mass = 1.0\naxial_damping_ratio = 1.0",
-        );
+    let base = surged_chain(10.0).replace("output_interval = 0.5", "output_interval = 5.0");
     let run = |name: &str, solver: &str| {
         let text = base.replace(
             "[analysis.dynamic]",
@@ -193,19 +198,14 @@ fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
 /// plane and its damping ramp at many steps (docs/theory/fem.md#line-relaxation and
 /// #convergence-check). With the seabed's kink settled in the line relaxation, a step needs
 /// one update from the predictor and one convergence check; with the check made with the last
-/// factor, that check forms no new J. Before: 2.9 iterations and 2.0 factorised or
-/// preconditioned systems per step (kinks at touchdown converged linearly); now 2.1 and 1.1.
+/// factor, that check forms no new J. Before both: 2.9 iterations and 2.9 factorised or
+/// preconditioned systems per step (kinks at touchdown converged linearly); with the seabed
+/// relaxed but a new J for every check, 2.0 and 2.0; now 2.1 and 1.1.
 /// The peak and trough of the fairlead reaction must be those of a run 1000× tighter.
 #[test]
 fn the_surged_chain_takes_one_update_and_one_check_per_step() {
     let dir = scratch("chain-two-iterations");
-    let base = example("mooring-chain.toml")
-        .replace("segments = 80", "segments = 160")
-        .replace("t_end = 60.0", "t_end = 20.0")
-        .replace(
-            "added_mass = 1.0",
-            "added_mass = 1.0\naxial_damping_ratio = 1.0",
-        );
+    let base = surged_chain(20.0);
     let run = |name: &str, tol: f64| {
         let text = base.replace(
             "[analysis.dynamic]",
