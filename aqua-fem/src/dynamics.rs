@@ -57,6 +57,13 @@ pub struct DynamicSettings {
     /// (docs/theory/fem.md#energy-consistent-midpoint). Default false.
     #[serde(default)]
     pub midpoint: bool,
+    /// Weight θ ∈ [½, 1] of the end velocity in the midpoint rule's position update,
+    /// x_{n+1} − x_n = Δt·((1 − θ)·v_n + θ·v_{n+1}). ½ (default) conserves the energy; θ > ½
+    /// dissipates (θ − ½)·‖v_{n+1} − v_n‖²_M per step, which damps unresolved stiff modes
+    /// (spectral radius (1 − θ)/θ as ωΔt → ∞) at first-order accuracy
+    /// (docs/theory/fem.md#energy-decaying-midpoint). Midpoint rule only.
+    #[serde(default = "half")]
+    pub theta: f64,
     /// How each Newton system is solved (docs/theory/fem.md#sparse-linear-algebra). Default
     /// [`LinearSolverKind::Symmetric`].
     #[serde(default)]
@@ -143,6 +150,10 @@ fn yes() -> bool {
     true
 }
 
+fn half() -> f64 {
+    0.5
+}
+
 impl DynamicSettings {
     /// Defaults with step dt [s] and end time t_end [s].
     pub fn new(dt: f64, t_end: f64) -> Self {
@@ -160,6 +171,7 @@ impl DynamicSettings {
             fd_position_jacobian: false,
             reuse_factor: 1,
             midpoint: false,
+            theta: 0.5,
             linear_solver: LinearSolverKind::Symmetric,
             line_relaxation: true,
         }
@@ -233,6 +245,20 @@ impl DynamicSettings {
         }
         if !(self.max_strain > 0.0) {
             return Err(invalid("max_strain", self.max_strain, "> 0"));
+        }
+        if !(0.5..=1.0).contains(&self.theta) {
+            return Err(invalid(
+                "theta",
+                self.theta,
+                "0.5 <= theta <= 1 (0.5 conserves the energy)",
+            ));
+        }
+        if !self.midpoint && self.theta != 0.5 {
+            return Err(invalid(
+                "theta",
+                self.theta,
+                "only with the midpoint rule (HHT-alpha damps through alpha or rho_inf)",
+            ));
         }
         Ok(())
     }
@@ -1039,7 +1065,7 @@ impl<'m> DynamicSolver<'m> {
         // x_m = (x_n + x1)/2, v_m = (v_n + v1)/2 with v1 = 2(x1 − x_n)/h − v_n).
         let (coef, t_eval, wq) = if midpoint {
             let c = Coef {
-                m: 2.0 / (h * h),
+                m: 1.0 / (self.st.theta * h * h),
                 k: 0.5,
                 c: 1.0 / h,
             };
@@ -1306,17 +1332,22 @@ impl<'m> DynamicSolver<'m> {
     }
 
     /// Midpoint rule: v1 on the free DOFs from x1, and the midpoint state (x_m, v_m, a_m) on
-    /// all DOFs (the constrained ones follow their motion at t_n and t_{n+1}).
+    /// all DOFs (the constrained ones follow their motion at t_n and t_{n+1}). With the weight θ
+    /// (½ for the plain rule): v1 = (x1 − x_n)/(θ·h) − (1 − θ)/θ·v_n and
+    /// v_m = (1 − θ)·v_n + θ·v1, which is (x1 − x_n)/h on the free DOFs for every θ.
     fn midpoint_kinematics(&mut self, h: f64) {
+        let th = self.st.theta;
+        let lag = (1.0 - th) / th;
         for &gd in &self.sys.dof_of_free {
             let (i, k) = (gd / 3, gd % 3);
-            self.v1[i][k] = 2.0 * (self.x1[i][k] - self.state.x[i][k]) / h - self.state.v[i][k];
+            self.v1[i][k] =
+                (self.x1[i][k] - self.state.x[i][k]) / (th * h) - lag * self.state.v[i][k];
         }
         for i in 0..self.model.n_nodes() {
             for k in 0..3 {
                 let (x0, v0) = (self.state.x[i][k], self.state.v[i][k]);
                 self.xm[i][k] = 0.5 * (x0 + self.x1[i][k]);
-                self.vm[i][k] = 0.5 * (v0 + self.v1[i][k]);
+                self.vm[i][k] = (1.0 - th) * v0 + th * self.v1[i][k];
                 self.am[i][k] = (self.v1[i][k] - v0) / h;
             }
         }

@@ -122,6 +122,7 @@ impl Plan {
                 s.linear_solver = d.linear_solver;
                 s.line_relaxation = d.line_relaxation;
                 s.midpoint = d.scheme == crate::scene::Scheme::Midpoint;
+                s.theta = theta(scene)?;
                 Integrator::Hht(s)
             }
             Some(scheme) => {
@@ -168,6 +169,24 @@ fn alpha(scene: &Scene) -> Result<f64> {
         (None, Some(r)) => DynamicSettings::alpha_from_rho_inf(r)
             .map_err(|e| SimError::at(format!("{file}: analysis.dynamic.rho_inf"), e)),
         (None, None) => Ok(DynamicSettings::new(DEFAULT_DT, 1.0).alpha),
+    }
+}
+
+/// The midpoint rule's velocity weight θ (docs/theory/fem.md#energy-decaying-midpoint).
+fn theta(scene: &Scene) -> Result<f64> {
+    let d = &scene.analysis.dynamic;
+    let file = scene.path.display();
+    match d.theta {
+        None => Ok(0.5),
+        Some(t) if d.scheme != crate::scene::Scheme::Midpoint => Err(SimError::input(format!(
+            "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" \
+             (HHT-alpha damps through alpha or rho_inf)"
+        ))),
+        Some(t) if (0.5..=1.0).contains(&t) => Ok(t),
+        Some(t) => Err(SimError::input(format!(
+            "{file}: analysis.dynamic.theta = {t}: valid is 0.5 <= theta <= 1 \
+             (0.5 conserves the energy; 0.75 damps unresolved modes by 1/3 per step)"
+        ))),
     }
 }
 

@@ -388,6 +388,10 @@ pub struct DynamicSpec {
     /// Spectral radius at infinity ρ∞ ∈ [0.5, 1]; exclusive with alpha.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rho_inf: Option<f64>,
+    /// Midpoint rule only: weight θ ∈ [0.5, 1] of the end velocity (default 0.5, energy
+    /// conserving; above, energy decaying at first order, docs/theory/fem.md#energy-decaying-midpoint).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub theta: Option<f64>,
     /// Time step [s] (HHT: nominal, default [`DEFAULT_DT`]; explicit: upper bound, default
     /// the stable estimate).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -439,6 +443,7 @@ impl Default for DynamicSpec {
             scheme: Scheme::Hht,
             alpha: None,
             rho_inf: None,
+            theta: None,
             dt: None,
             t_end: DEFAULT_T_END,
             dt_min: hht.dt_min,
