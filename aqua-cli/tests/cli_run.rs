@@ -190,6 +190,18 @@ fn a_mistake_in_each_section_is_reported_with_exit_code_2() {
             &["alpha", "0.5", "1/3"],
         ),
         (
+            "theta-range",
+            &format!(
+                "{base}\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nscheme = \"midpoint\"\ntheta = 0.4\n"
+            ),
+            &["analysis.dynamic.theta", "0.4", "0.5 <= theta <= 1"],
+        ),
+        (
+            "theta-hht",
+            &format!("{base}\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\ntheta = 0.75\n"),
+            &["analysis.dynamic.theta", "0.75", "midpoint"],
+        ),
+        (
             "analysis-kind",
             "[analysis]\nkind = \"transient\"\n",
             &["line 2", "transient", "static+dynamic"],
