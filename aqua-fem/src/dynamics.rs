@@ -59,8 +59,9 @@ pub struct DynamicSettings {
     pub midpoint: bool,
     /// Weight θ ∈ [½, 1] of the end velocity in the midpoint rule's position update,
     /// x_{n+1} − x_n = Δt·((1 − θ)·v_n + θ·v_{n+1}). ½ (default) conserves the energy; θ > ½
-    /// dissipates (θ − ½)·‖v_{n+1} − v_n‖²_M per step, which damps unresolved stiff modes
-    /// (spectral radius (1 − θ)/θ as ωΔt → ∞) at first-order accuracy
+    /// dissipates exactly (θ − ½)·‖v_{n+1} − v_n‖²_M per step, at first-order accuracy: it
+    /// damps motion with velocity jumps (the chatter of slack elements) and modes near
+    /// ωΔt ≈ 1–3, but not the ωΔt → ∞ limit, where one root tends to −1
     /// (docs/theory/fem.md#energy-decaying-midpoint). Midpoint rule only.
     #[serde(default = "half")]
     pub theta: f64,
