@@ -33,6 +33,7 @@ pub const ALIASES: &[(&str, &[&str])] = &[
     ("t_end", &["analysis.dynamic.t_end"]),
     ("scheme", &["analysis.dynamic.scheme"]),
     ("alpha", &["analysis.dynamic.alpha"]),
+    ("theta", &["analysis.dynamic.theta"]),
     ("output_interval", &["analysis.dynamic.output_interval"]),
     (
         "element_length",

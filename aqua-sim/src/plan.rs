@@ -178,10 +178,12 @@ fn theta(scene: &Scene) -> Result<f64> {
     let file = scene.path.display();
     match d.theta {
         None => Ok(0.5),
-        Some(t) if d.scheme != crate::scene::Scheme::Midpoint => Err(SimError::input(format!(
-            "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" \
+        Some(t) if d.scheme != crate::scene::Scheme::Midpoint && t != 0.5 => {
+            Err(SimError::input(format!(
+                "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" \
              (HHT-alpha damps through alpha or rho_inf)"
-        ))),
+            )))
+        }
         Some(t) if (0.5..=1.0).contains(&t) => Ok(t),
         Some(t) => Err(SimError::input(format!(
             "{file}: analysis.dynamic.theta = {t}: valid is 0.5 <= theta <= 1 \
