@@ -202,6 +202,13 @@ fn a_mistake_in_each_section_is_reported_with_exit_code_2() {
             &["analysis.dynamic.theta", "0.75", "midpoint"],
         ),
         (
+            "theta-rk4",
+            &format!(
+                "{base}\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nscheme = \"rk4\"\ntheta = 1\n"
+            ),
+            &["analysis.dynamic.theta", "1", "midpoint"],
+        ),
+        (
             "analysis-kind",
             "[analysis]\nkind = \"transient\"\n",
             &["line 2", "transient", "static+dynamic"],

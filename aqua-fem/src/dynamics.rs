@@ -1063,7 +1063,7 @@ impl<'m> DynamicSolver<'m> {
         model.apply_constraints(t1, 1.0, &mut self.x1, &mut self.v1, &mut self.a1);
         let midpoint = self.st.midpoint;
         // ∂r/∂x_{n+1} = m·M + k·K + c·C (HHT: Newmark; midpoint: a_m = (v1 − v_n)/h,
-        // x_m = (x_n + x1)/2, v_m = (v_n + v1)/2 with v1 = 2(x1 − x_n)/h − v_n).
+        // x_m = (x_n + x1)/2, v_m = (1 − θ)·v_n + θ·v1 with v1 = (x1 − x_n)/(θh) − (1 − θ)/θ·v_n).
         let (coef, t_eval, wq) = if midpoint {
             let c = Coef {
                 m: 1.0 / (self.st.theta * h * h),

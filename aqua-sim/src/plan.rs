@@ -107,6 +107,8 @@ impl Plan {
             a => a,
         };
         let d = &scene.analysis.dynamic;
+        // Validated for every scheme, so that θ given with an explicit one is not ignored.
+        let theta = theta(scene)?;
         let integrator = match d.scheme.explicit() {
             None => {
                 let mut s = DynamicSettings::new(dt, t_end);
@@ -122,7 +124,7 @@ impl Plan {
                 s.linear_solver = d.linear_solver;
                 s.line_relaxation = d.line_relaxation;
                 s.midpoint = d.scheme == crate::scene::Scheme::Midpoint;
-                s.theta = theta(scene)?;
+                s.theta = theta;
                 Integrator::Hht(s)
             }
             Some(scheme) => {
@@ -187,7 +189,7 @@ fn theta(scene: &Scene) -> Result<f64> {
         Some(t) if (0.5..=1.0).contains(&t) => Ok(t),
         Some(t) => Err(SimError::input(format!(
             "{file}: analysis.dynamic.theta = {t}: valid is 0.5 <= theta <= 1 \
-             (0.5 conserves the energy; 0.75 damps unresolved modes by 1/3 per step)"
+             (0.5 conserves the energy; above it each step removes (theta - 1/2)*|v1 - v0|^2_M)"
         ))),
     }
 }
