@@ -206,7 +206,12 @@ fn a_mistake_in_each_section_is_reported_with_exit_code_2() {
             &format!(
                 "{base}\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nscheme = \"rk4\"\ntheta = 1\n"
             ),
-            &["analysis.dynamic.theta", "1", "midpoint"],
+            &[
+                "analysis.dynamic.theta",
+                "1",
+                "midpoint",
+                "explicit scheme has no theta",
+            ],
         ),
         (
             "analysis-kind",

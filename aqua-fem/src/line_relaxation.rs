@@ -398,7 +398,8 @@ impl Ctx<'_, '_> {
             let (xn, vn, an) = (kin.xn[i][k], kin.vn[i][k], kin.an[i][k]);
             let h = kin.h;
             if kin.midpoint {
-                // v_m = (v_n + v_{n+1})/2 with v_{n+1} = 2(x_{n+1} − x_n)/h − v_n.
+                // v_m = (1 − θ)·v_n + θ·v_{n+1} with v_{n+1} = (x_{n+1} − x_n)/(θh) − (1 − θ)/θ·v_n
+                // is (x_{n+1} − x_n)/h for every θ (½ for the plain rule).
                 xe[k] = 0.5 * (xn + xi[k]);
                 ve[k] = (xi[k] - xn) / h;
             } else {

@@ -181,9 +181,13 @@ fn theta(scene: &Scene) -> Result<f64> {
     match d.theta {
         None => Ok(0.5),
         Some(t) if d.scheme != crate::scene::Scheme::Midpoint && t != 0.5 => {
+            let hint = if d.scheme == crate::scene::Scheme::Hht {
+                "HHT-alpha damps through alpha or rho_inf"
+            } else {
+                "an explicit scheme has no theta; remove the key or use scheme = \"midpoint\""
+            };
             Err(SimError::input(format!(
-                "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" \
-             (HHT-alpha damps through alpha or rho_inf)"
+                "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" ({hint})"
             )))
         }
         Some(t) if (0.5..=1.0).contains(&t) => Ok(t),
