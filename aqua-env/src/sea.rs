@@ -329,7 +329,9 @@ impl Sea {
                 *o = self.at(*p, t, phase);
             }
         } else {
-            let chunk = (PARALLEL_WORK / ncomp).max(16);
+            // A few chunks per thread, so that the threads finish together.
+            let per_thread = points.len().div_ceil(4 * rayon::current_num_threads());
+            let chunk = per_thread.clamp(16, (PARALLEL_WORK / ncomp).max(16));
             points
                 .par_chunks(chunk)
                 .zip(out.par_chunks_mut(chunk))

@@ -22,8 +22,8 @@ const SYMMETRIC_PAUSE: usize = 64;
 /// sweeps beyond the last solve with a fresh one (a numeric factorisation of the reference
 /// cage costs about as much as 7 sweeps).
 const STALE_EXTRA_SWEEPS: usize = 4;
-/// Element count above which element kernels run in parallel.
-const PAR_THRESHOLD: usize = 4096;
+/// Element count from which element kernels run in parallel (docs/theory/fem.md#threads).
+const PAR_THRESHOLD: usize = 512;
 
 /// Jacobian coefficients: J = m·M + k·K + c·C with K = ∂q/∂x, C = ∂q/∂v.
 #[derive(Debug, Clone, Copy)]

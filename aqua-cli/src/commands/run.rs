@@ -104,7 +104,10 @@ impl Observer for Terminal<'_> {
 
 /// Run `aqua run`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let ending = run_scene(&a.scene, &a.set, &a.out, a.quiet)?;
+    // The run goes to a worker of rayon's pool, so that the solver's parallel loops (sea
+    // kinematics, element loads, cable kernels) are split between this worker and the others
+    // instead of being handed over by a thread that only waits (docs/theory/fem.md#threads).
+    let ending = rayon::scope(|_| run_scene(&a.scene, &a.set, &a.out, a.quiet))?;
     if a.plot {
         let pictures = aqua_sim::plot::plot_run(&a.out)?;
         if !a.quiet {
