@@ -101,7 +101,10 @@ pub struct LinearSolverStats {
     pub factor_reuses: usize,
     /// Symmetric solves that fell back to the LU.
     pub fallbacks: usize,
-    /// Refinement sweeps of all symmetric solves.
+    /// Symmetric solves whose sweeps stalled and that GMRES finished
+    /// (docs/theory/fem.md#sparse-linear-algebra).
+    pub gmres_rescues: usize,
+    /// Refinement sweeps of all symmetric solves (GMRES steps included).
     pub refinement_sweeps: usize,
     /// Free lines that the midpoint rule relaxes (docs/theory/fem.md#line-relaxation).
     pub relaxed_lines: usize,
@@ -711,6 +714,7 @@ impl<'m> DynamicSolver<'m> {
             factorisations: self.sys.n_factorisations,
             factor_reuses: self.sys.n_factor_reuses,
             fallbacks: self.sys.n_symmetric_fallbacks,
+            gmres_rescues: self.sys.sym.as_ref().map_or(0, |s| s.gmres_rescues),
             refinement_sweeps: self.sys.n_refinement_sweeps,
             relaxed_lines: if self.relax_lines {
                 self.lines.n_lines()

@@ -12,8 +12,11 @@
 //!
 //! whose error contracts by the spectral radius of S⁻¹A per sweep. It stops when
 //! ‖b − J·y‖₂ ≤ `REFINE_TOL`·‖b‖₂, so the Newton step is that of J to round-off and Newton's
-//! convergence is unchanged. When a sweep shrinks the residual by less than 10 %, or after `MAX_SWEEPS`, or
-//! when the L·D·Lᵀ has a zero pivot, the caller falls back to the sparse LU of J.
+//! convergence is unchanged. When a sweep shrinks the residual by less than 10 %, or after
+//! `MAX_SWEEPS`, a fresh factor hands the solve to restarted GMRES right-preconditioned by
+//! S⁻¹ (a few eigenvalues of S⁻¹J outside |1 − λ| < 1 are what stalls the sweeps,
+//! docs/theory/fem.md#gmres-rescue); when that fails too, or the L·D·Lᵀ has a zero pivot, the
+//! caller falls back to the sparse LU of J.
 //!
 //! Since the sweeps solve with J itself, the factor may be that of an earlier, nearby matrix
 //! ([`set_matrix`](SymmetricSolver::set_matrix)): it then only costs more sweeps. The caller
@@ -37,6 +40,10 @@ const REFINE_TOL: f64 = 1e-10;
 const MAX_SWEEPS: usize = 30;
 /// A sweep must shrink the residual by at least this factor.
 const MIN_CONTRACTION: f64 = 0.9;
+/// Krylov dimension of the GMRES rescue before a restart.
+const GMRES_RESTART: usize = 20;
+/// GMRES cycles (of `GMRES_RESTART` applications of S⁻¹ each) before the LU takes over.
+const GMRES_CYCLES: usize = 3;
 
 /// Largest fill nnz(L)/n of the simplicial L·D·Lᵀ for which it is kept; denser factors are
 /// supernodal. Measured (release, this 2-core machine): the 160-segment chain (fill 5.0)
@@ -72,8 +79,13 @@ pub(crate) struct SymmetricSolver {
     b: Vec<f64>,
     y: Vec<f64>,
     res: Vec<f64>,
-    /// Refinement sweeps of the last solve.
+    /// Refinement sweeps of the last solve (GMRES steps included).
     pub last_sweeps: usize,
+    /// Solves that the sweeps did not finish and GMRES did.
+    pub gmres_rescues: usize,
+    /// GMRES basis V (m + 1 vectors) and preconditioned directions Z = S⁻¹V (m vectors),
+    /// allocated at the first rescue.
+    krylov: Vec<f64>,
     /// `factored` is the matrix whose symmetric part was factorised.
     fresh: bool,
 }
@@ -158,6 +170,8 @@ impl SymmetricSolver {
             y: vec![0.0; n],
             res: vec![0.0; n],
             last_sweeps: 0,
+            gmres_rescues: 0,
+            krylov: Vec::new(),
             fresh: false,
         }))
     }
@@ -246,7 +260,16 @@ impl SymmetricSolver {
         let mut res = std::mem::take(&mut self.res);
         y.copy_from_slice(rhs);
         self.solve_s(&mut y);
-        let out = self.refine(col_ptr, row_idx, &mut y, &mut res, bn, stop);
+        let mut out = self.refine(col_ptr, row_idx, &mut y, &mut res, bn, stop);
+        // A fresh factor whose sweeps stall: a few eigenvalues of S⁻¹J lie outside the disk
+        // |1 − λ| < 1, which GMRES removes in a few steps (a stale factor is refreshed first).
+        if out == Err(SymmetricFallback::NoContraction)
+            && self.fresh
+            && self.gmres(col_ptr, row_idx, &mut y, &mut res, bn, stop.floor)
+        {
+            self.gmres_rescues += 1;
+            out = Ok(false);
+        }
         if out.is_ok() {
             rhs.copy_from_slice(&y);
         }
@@ -305,6 +328,134 @@ impl SymmetricSolver {
             correction = inf_norm(res);
             self.last_sweeps += 1;
         }
+    }
+}
+
+impl SymmetricSolver {
+    /// res = b − J·y (J the matrix at the last `factorize`).
+    fn residual(&self, col_ptr: &[usize], row_idx: &[usize], y: &[f64], res: &mut [f64]) {
+        res.copy_from_slice(&self.b);
+        for c in 0..self.n {
+            let yc = y[c];
+            for p in col_ptr[c]..col_ptr[c + 1] {
+                res[row_idx[p]] -= self.factored[p] * yc;
+            }
+        }
+    }
+
+    /// Restarted GMRES(m) on J·y = b from the sweeps' y, right-preconditioned by S⁻¹ (Saad
+    /// and Schultz 1986; Givens rotations on the Hessenberg matrix). True when it reached
+    /// ‖b − J·y‖₂ ≤ max(REFINE_TOL·‖b‖₂, floor); y is then the solution. Hand-written because
+    /// faer 0.24 has no GMRES (its BiCGStab does not minimise the residual, which is what
+    /// a few outlying eigenvalues call for).
+    fn gmres(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        y: &mut [f64],
+        res: &mut [f64],
+        bn: f64,
+        floor: f64,
+    ) -> bool {
+        let (n, m) = (self.n, GMRES_RESTART);
+        let target = (REFINE_TOL * bn).max(floor);
+        let mut kry = std::mem::take(&mut self.krylov);
+        kry.resize((2 * m + 1) * n, 0.0);
+        let (vs, zs) = kry.split_at_mut((m + 1) * n);
+        let mut h = [[0.0f64; GMRES_RESTART]; GMRES_RESTART + 1];
+        let (mut cs, mut sn, mut g) = (
+            [0.0; GMRES_RESTART],
+            [0.0; GMRES_RESTART],
+            [0.0; GMRES_RESTART + 1],
+        );
+        let mut done = false;
+        for _ in 0..GMRES_CYCLES {
+            self.residual(col_ptr, row_idx, y, res);
+            let beta = norm(res);
+            if !beta.is_finite() {
+                break;
+            }
+            if beta <= target {
+                done = true;
+                break;
+            }
+            for (v, r) in vs[..n].iter_mut().zip(res.iter()) {
+                *v = r / beta;
+            }
+            g.fill(0.0);
+            g[0] = beta;
+            let mut k_used = 0;
+            for k in 0..m {
+                let z = &mut zs[k * n..(k + 1) * n];
+                z.copy_from_slice(&vs[k * n..(k + 1) * n]);
+                self.solve_s(z);
+                self.last_sweeps += 1;
+                // w = J·z, orthogonalised against V (modified Gram–Schmidt).
+                let (done_v, rest) = vs.split_at_mut((k + 1) * n);
+                let w = &mut rest[..n];
+                w.fill(0.0);
+                for c in 0..n {
+                    let zc = z[c];
+                    for p in col_ptr[c]..col_ptr[c + 1] {
+                        w[row_idx[p]] += self.factored[p] * zc;
+                    }
+                }
+                for (j, hj) in h.iter_mut().take(k + 1).enumerate() {
+                    let vj = &done_v[j * n..(j + 1) * n];
+                    let d: f64 = w.iter().zip(vj).map(|(a, b)| a * b).sum();
+                    hj[k] = d;
+                    for (a, b) in w.iter_mut().zip(vj) {
+                        *a -= d * b;
+                    }
+                }
+                let hn = norm(w);
+                h[k + 1][k] = hn;
+                if hn > 0.0 {
+                    for a in w.iter_mut() {
+                        *a /= hn;
+                    }
+                }
+                for j in 0..k {
+                    let (a, b) = (h[j][k], h[j + 1][k]);
+                    h[j][k] = cs[j] * a + sn[j] * b;
+                    h[j + 1][k] = -sn[j] * a + cs[j] * b;
+                }
+                let r = h[k][k].hypot(h[k + 1][k]);
+                if r == 0.0 || !r.is_finite() {
+                    break;
+                }
+                (cs[k], sn[k]) = (h[k][k] / r, h[k + 1][k] / r);
+                h[k][k] = r;
+                h[k + 1][k] = 0.0;
+                g[k + 1] = -sn[k] * g[k];
+                g[k] *= cs[k];
+                k_used = k + 1;
+                if g[k + 1].abs() <= 0.5 * target || hn == 0.0 {
+                    break;
+                }
+            }
+            // y += Z·c with H·c = g (upper triangular).
+            let mut c = [0.0f64; GMRES_RESTART];
+            for i in (0..k_used).rev() {
+                let s: f64 = (i + 1..k_used).map(|j| h[i][j] * c[j]).sum();
+                c[i] = (g[i] - s) / h[i][i];
+            }
+            for (i, ci) in c.iter().take(k_used).enumerate() {
+                for (a, b) in y.iter_mut().zip(&zs[i * n..(i + 1) * n]) {
+                    *a += ci * b;
+                }
+            }
+            if k_used == 0 {
+                break;
+            }
+        }
+        if !done {
+            self.residual(col_ptr, row_idx, y, res);
+            let rn = norm(res);
+            done = rn.is_finite() && rn <= target;
+        }
+        self.krylov = kry;
+        done
     }
 }
 
@@ -488,6 +639,37 @@ mod tests {
         assert!(err < 1e-10, "{err}");
         // Contraction ≈ ‖S⁻¹A‖ ≈ 1e-2 per sweep: a handful of sweeps, not the maximum.
         assert!((1..=6).contains(&sweeps), "{sweeps} sweeps");
+    }
+
+    /// A strong skew coupling between two unknowns only (a rank-2 A in J = S + A) puts two
+    /// eigenvalues of S⁻¹J far outside |1 − λ| < 1: the sweeps stall, GMRES, for which
+    /// S⁻¹J is the identity plus rank 2, finishes in a few steps; the answer is the dense LU's.
+    #[test]
+    fn few_outlying_eigenvalues_are_rescued_by_gmres() {
+        let mut a = tangent(60, 0.1);
+        a[(20, 21)] += 8.0;
+        a[(21, 20)] -= 8.0;
+        let n = a.nrows();
+        let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
+        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        s.factorize(&v).unwrap();
+        let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
+        let mut y = b.clone();
+        let out = s.solve(&cp, &ri, &mut y);
+        assert_eq!(out, Ok(()));
+        assert_eq!(s.gmres_rescues, 1, "the sweeps alone did it");
+        let exact = a
+            .clone()
+            .lu()
+            .solve(&nalgebra::DVector::from_vec(b))
+            .unwrap();
+        let err = (nalgebra::DVector::from_vec(y) - &exact).norm() / exact.norm();
+        assert!(err < 1e-9, "{err}");
+        assert!(
+            s.last_sweeps <= 40,
+            "{} sweeps and GMRES steps",
+            s.last_sweeps
+        );
     }
 
     #[test]

@@ -129,7 +129,7 @@ pub(crate) struct System {
     /// Factorise the symmetric part as L·D·Lᵀ and refine on the rest (dynamics), with the LU
     /// as fallback (docs/theory/fem.md#sparse-linear-algebra).
     pub symmetric: bool,
-    sym: Option<SymmetricSolver>,
+    pub(crate) sym: Option<SymmetricSolver>,
     /// The last factorisation is the symmetric one.
     sym_active: bool,
     /// Factorisations left on the LU after a symmetric fallback.

@@ -282,13 +282,14 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     // Dynamics: Newton iterations per nominal step, step halvings included (measured on the
     // bundled examples): ~30 when something floats on slack lines in waves (collars, buoys),
     // where the step is halved to milliseconds and grows back only partly (with the midpoint
-    // rule's line relaxation, 2026-12-04: moored cage 55, farm 34; 19 for the farm with
-    // θ = 0.75, 2026-12-05; this unit cost overestimates theirs 2–3×, so 30 keeps both within
-    // 3× of the measured wall: moored 88 s for 43 s, farm 152 s for 51–58 s); ~4 where a
+    // rule's line relaxation, 2026-12-04: moored cage 55, farm 34; 2026-12-05 with the run on
+    // a pool worker, the GMRES rescue and θ = 0.75 for the farm: moored 46, farm 20). The unit
+    // cost above overestimates theirs 3–5× since their loops run on both cores, so 10 keeps
+    // both within 2× of the measured wall: moored 29 s for 28 s, farm 50 s for 29 s); ~4 where a
     // prescribed motion drives a stiff line (mooring chain 3.5); otherwise ~1.5 (reference
     // cage 1.0, buoy mooring in a current 1.0).
     let iterations_per_step = if !built.design.floaters.is_empty() && ncomp > 0 {
-        30.0
+        10.0
     } else if built.model.n_prescribed_motions() > 0 {
         4.0
     } else {
