@@ -266,32 +266,34 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let per_iter_dynamic = per_iter + 200e-9 * (ncomp * built.model.n_nodes()) as f64;
     // Statics (Levenberg–Marquardt, docs/theory/fem.md#static-solver): the iterations grow
     // slowly with the free DOFs (10 m cage 67 for ~250, mooring chain 155 for 237, moored cage
-    // 242 for 1143, reference cage 130 for 3027, 1.25 m cage 244 for ~12 000), each about six
+    // 242 for 1143, reference cage 130 for 3027, 1.25 m cage 244 for ~12 000), each about four
     // of these units (factorisation, Jacobian with finite-difference water-load derivatives,
-    // trial evaluations).
+    // trial evaluations; 2026-12-05: reference cage 2.1 s estimated for 1.5 s, farm 2.5 s for
+    // 1.3 s, buoy mooring and mooring chain within 3× of their whole runs of 0.03 and 0.11 s).
     let static_iterations = if free == 0 {
         1.0
     } else {
         100.0 + 0.012 * free as f64
     };
     let estimated_static = if kind != AnalysisKind::Dynamic {
-        6.0 * per_iter * static_iterations
+        4.0 * per_iter * static_iterations
     } else {
         0.0
     };
     // Dynamics: Newton iterations per nominal step, step halvings included (measured on the
-    // bundled examples): ~30 when something floats on slack lines in waves (collars, buoys),
+    // bundled examples): 10 when something floats on slack lines in waves (collars, buoys),
     // where the step is halved to milliseconds and grows back only partly (with the midpoint
     // rule's line relaxation, 2026-12-04: moored cage 55, farm 34; 2026-12-05 with the run on
     // a pool worker, the GMRES rescue and θ = 0.75 for the farm: moored 46, farm 20). The unit
     // cost above overestimates theirs 3–5× since their loops run on both cores, so 10 keeps
-    // both within 2× of the measured wall: moored 29 s for 28 s, farm 50 s for 29 s); ~4 where a
-    // prescribed motion drives a stiff line (mooring chain 3.5); otherwise ~1.5 (reference
+    // both within 2× of the measured wall: moored 29 s for 28 s, farm 50 s for 29 s); ~2 where a
+    // prescribed motion drives a stiff line (mooring chain 3.5; 2.0 since its line relaxation
+    // and seabed relaxation, 2026-12-05); otherwise ~1.5 (reference
     // cage 1.0, buoy mooring in a current 1.0).
     let iterations_per_step = if !built.design.floaters.is_empty() && ncomp > 0 {
         10.0
     } else if built.model.n_prescribed_motions() > 0 {
-        4.0
+        2.0
     } else {
         1.5
     };
