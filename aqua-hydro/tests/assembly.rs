@@ -513,6 +513,54 @@ fn element_path_equals_bulk_path() {
     }
 }
 
+/// A sea with one Airy wave (8 s, 1 m) and a current: its flow depends on time and position.
+fn wave_sea() -> Sea {
+    let c = Constants::default();
+    let comp = Component::new(1.0, 8.0, 0.4, 0.3, Depth::Infinite, c.gravity).unwrap();
+    Sea::new(
+        c,
+        Current::uniform([0.4, 0.1, 0.0]),
+        Waves::Linear {
+            sum: LinearSum::new(vec![comp], Depth::Infinite, c.gravity),
+            stretching: Stretching::None,
+            ramp: Ramp::off(),
+        },
+    )
+}
+
+#[test]
+fn flow_is_reused_only_at_the_same_state() {
+    // `prepare` keeps the sea of the last state it saw; a state that differs in time or in a
+    // single coordinate must see its own flow, i.e. equal what a fresh assembly computes.
+    let (x, els) = mixed();
+    let n = x.len();
+    let v = vec![[0.01, 0.02, -0.03]; n];
+    let fresh = |t: f64, x: &[[f64; 3]]| {
+        let mut asm = LoadAssembly::new(wave_sea(), n, els.clone()).unwrap();
+        run(&mut asm, t, x, &v).f
+    };
+    let mut asm = LoadAssembly::new(wave_sea(), n, els.clone()).unwrap();
+    let at_1 = run(&mut asm, 1.0, &x, &v).f;
+    assert_eq!(run(&mut asm, 1.0, &x, &v).f, at_1, "same state, same loads");
+    let at_2 = run(&mut asm, 2.0, &x, &v).f;
+    assert_eq!(at_2, fresh(2.0, &x), "a new time must re-evaluate the sea");
+    assert_ne!(at_2, at_1);
+    let mut moved = x.clone();
+    moved[4][2] -= 0.2;
+    let at_moved = run(&mut asm, 2.0, &moved, &v).f;
+    assert_eq!(
+        at_moved,
+        fresh(2.0, &moved),
+        "a moved node must re-evaluate the sea"
+    );
+    assert_ne!(at_moved, at_2);
+    assert_eq!(
+        run(&mut asm, 1.0, &x, &v).f,
+        at_1,
+        "back to the first state"
+    );
+}
+
 /// A rigid cylindrical cage: radius 5 m, 16 sides, 5 rows of 1 m, fan-triangle bottom.
 fn cage(wake: Wake, sn: f64) -> (Vec<[f64; 3]>, Elements) {
     let (ns, rows, r) = (16, 5, 5.0);

@@ -261,9 +261,13 @@ pub struct LoadAssembly {
     xoff: Vec<usize>,
     used: Vec<usize>,
     all_used: bool,
-    scratch_pts: Vec<[f64; 3]>,
     scratch_flow: Vec<FlowPoint>,
     flow: Vec<NodeFlow>,
+    /// Time (bits) and phase of the flow in `flow`, and the positions it was evaluated at
+    /// (every node if `all_used`, else the `used` nodes in order): a `prepare` at the same
+    /// state reuses it (the solvers re-evaluate a state to form its Jacobian).
+    flow_key: Option<(u64, Phase)>,
+    flow_pts: Vec<[f64; 3]>,
     wake: Vec<WakeCell>,
     wake_ready: bool,
     /// Cage-to-cage wake: participating cages, and (element, its wake group) of every
@@ -552,9 +556,10 @@ impl LoadAssembly {
             xoff,
             used,
             all_used,
-            scratch_pts: vec![[0.0; 3]; n_scratch],
             scratch_flow: vec![FlowPoint::default(); if all_used { n_nodes } else { n_scratch }],
             flow: vec![NodeFlow::default(); n_nodes],
+            flow_key: None,
+            flow_pts: vec![[0.0; 3]; if all_used { n_nodes } else { n_scratch }],
             wake: vec![WakeCell::default(); ne],
             wake_ready: false,
             cage_wake: CageWake::default(),
@@ -708,6 +713,17 @@ impl LoadAssembly {
         if !self.wake_ready {
             self.update_wake(t, x)?;
         }
+        if self.flow_is_current(t, phase, x) {
+            return Ok(());
+        }
+        self.flow_key = Some((t.to_bits(), phase));
+        if self.all_used {
+            self.flow_pts.copy_from_slice(x);
+        } else {
+            for (p, &nd) in self.flow_pts.iter_mut().zip(&self.used) {
+                *p = x[nd];
+            }
+        }
         let sea = &*self.sea;
         if self.all_used {
             sea.eval(t, phase, x, &mut self.scratch_flow);
@@ -720,10 +736,7 @@ impl LoadAssembly {
                 }
             }
         } else {
-            for (p, &nd) in self.scratch_pts.iter_mut().zip(&self.used) {
-                *p = x[nd];
-            }
-            sea.eval(t, phase, &self.scratch_pts, &mut self.scratch_flow);
+            sea.eval(t, phase, &self.flow_pts, &mut self.scratch_flow);
             for (fp, &nd) in self.scratch_flow.iter().zip(&self.used) {
                 self.flow[nd] = if fp.submergence < 0.0 {
                     surface_flow(sea, x[nd], fp.eta, t, phase)
@@ -733,6 +746,22 @@ impl LoadAssembly {
             }
         }
         Ok(())
+    }
+
+    /// Whether `flow` already holds the sea at positions `x` at (t, phase): same time and
+    /// phase bit for bit, same position of every used node.
+    fn flow_is_current(&self, t: f64, phase: Phase, x: &[[f64; 3]]) -> bool {
+        if self.flow_key != Some((t.to_bits(), phase)) {
+            return false;
+        }
+        if self.all_used {
+            self.flow_pts.as_slice() == x
+        } else {
+            self.used
+                .iter()
+                .zip(&self.flow_pts)
+                .all(|(&nd, p)| x[nd] == *p)
+        }
     }
 
     /// Loads of element `e` at local positions `x` and velocities `v` (the element's nodes
