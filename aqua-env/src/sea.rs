@@ -1,7 +1,7 @@
 //! The sea a structure sits in: constants, current and waves, evaluated at many points at one
 //! time (docs/theory/environment.md#flow-at-a-point).
 
-use crate::airy::{LinearSum, RawKinematics};
+use crate::airy::{LinearSum, RawKinematics, SumScratch};
 use crate::constants::{Constants, Depth};
 use crate::current::Current;
 use crate::ramp::Ramp;
@@ -61,6 +61,8 @@ pub enum Phase {
 }
 
 /// The waves of a sea.
+// Built once per run and read at every point: the size of the variants does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum Waves {
     /// Still water.
@@ -100,8 +102,8 @@ impl Waves {
 }
 
 thread_local! {
-    /// Per-thread (cos θ_i, sin θ_i) scratch: grows once, then no allocation per call.
-    static PHASES: RefCell<Vec<(f64, f64)>> = const { RefCell::new(Vec::new()) };
+    /// Per-thread scratch of the wave sums: grows once, then no allocation per call.
+    static SCRATCH: RefCell<Option<SumScratch>> = const { RefCell::new(None) };
 }
 
 /// Points × components above which [`Sea::eval`] splits the work over threads.
@@ -226,18 +228,17 @@ impl Sea {
     /// Everything at one point p = (x, y, z) [m] and time t [s].
     pub fn at(&self, p: [f64; 3], t: f64, phase: Phase) -> FlowPoint {
         match &self.waves {
-            Waves::Linear { sum, .. } if phase == Phase::Dynamic => PHASES.with(|cell| {
-                let mut cs = cell.borrow_mut();
-                if cs.len() < sum.len() {
-                    cs.resize(sum.len(), (0.0, 0.0));
-                }
-                self.at_with(p, t, phase, &mut cs)
+            Waves::Linear { sum, .. } if phase == Phase::Dynamic => SCRATCH.with(|cell| {
+                let mut sc = cell.borrow_mut();
+                let sc = sc.get_or_insert_with(SumScratch::default);
+                sc.fit(sum.len());
+                self.at_with(p, t, phase, sc)
             }),
-            _ => self.at_with(p, t, phase, &mut []),
+            _ => self.at_with(p, t, phase, &mut SumScratch::default()),
         }
     }
 
-    fn at_with(&self, p: [f64; 3], t: f64, phase: Phase, cs: &mut [(f64, f64)]) -> FlowPoint {
+    fn at_with(&self, p: [f64; 3], t: f64, phase: Phase, cs: &mut SumScratch) -> FlowPoint {
         let [x, y, z] = p;
         let mut out = FlowPoint::default();
         if let Depth::Finite(h) = self.constants.depth

@@ -1,4 +1,4 @@
-//! A branch-free sin/cos for the wave sums: Cody–Waite reduction by π/2 and the minimax
+//! A branch-free sin/cos and exp for the wave sums: Cody–Waite reduction by π/2 and the minimax
 //! kernels of fdlibm (Sun Microsystems, freely distributable), written out here.
 //!
 //! Why not `f64::sin_cos`: the wave sums call it for every component at every point and it
@@ -32,13 +32,26 @@ const C6: f64 = -1.135_964_755_778_819_5e-11;
 /// (sin x, cos x).
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if !(x.abs() <= 1e6) {
+    if !(x.abs() <= KERNEL_RANGE) {
         return x.sin_cos();
     }
+    sin_cos_kernel(x)
+}
+
+/// |x| [rad] up to which [`sin_cos_kernel`] holds its accuracy.
+pub const KERNEL_RANGE: f64 = 1e6;
+
+/// (sin x, cos x) for |x| ≤ [`KERNEL_RANGE`], with no branch and no call, so that a loop of
+/// it vectorises; outside that range the result is meaningless (callers check the range).
+#[inline(always)]
+pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
     // Round to nearest by the 1.5·2^52 trick: pure arithmetic (f64::round is a libm call on
-    // the baseline x86-64 target).
+    // the baseline x86-64 target). The sum's low mantissa bits are n itself (2^51 + n), so the
+    // quadrant is read from its bits: no float-to-integer conversion, which x86 cannot do on
+    // vectors of f64 before AVX-512.
     const SHIFT: f64 = 6_755_399_441_055_744.0;
-    let n = (x * INV_PIO2 + SHIFT) - SHIFT;
+    let shifted = x * INV_PIO2 + SHIFT;
+    let n = shifted - SHIFT;
     let r = (x - n * PIO2_HI) - n * PIO2_LO;
     let z = r * r;
     let s = r + r * z * (S1 + z * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))));
@@ -46,7 +59,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     // The quadrant q picks (s, c), (c, −s), (−s, −c) or (−c, s). Selected without a branch:
     // q is random across the components of a wave sum, and a mispredicted jump per component
     // cost more than the kernels (bench `sea_eval`).
-    let q = n as i64 as u64;
+    let q = shifted.to_bits();
     let odd = q & 1 == 1;
     let (a, b) = (if odd { c } else { s }, if odd { s } else { c });
     let sin_sign = (q & 2) << 62;
@@ -55,6 +68,47 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
         f64::from_bits(a.to_bits() ^ sin_sign),
         f64::from_bits(b.to_bits() ^ cos_sign),
     )
+}
+
+/// e^x without a branch or a call (so that a loop of it vectorises): the reduction
+/// x = k·ln 2 + r, |r| ≤ ½ ln 2, and the rational kernel of fdlibm's `exp` (Remez, error below
+/// 2^−59 on that interval), then 2^k from its exponent bits. Within 1 ulp of the exact value
+/// for −708 ≤ x ≤ 709 (tested against `f64::exp`); 0 below −708 (where e^x < 3.3e−308),
+/// +∞ above 709.78, NaN for NaN.
+#[inline(always)]
+pub fn exp_kernel(x: f64) -> f64 {
+    const LN2_HI: f64 = 6.931_471_803_691_238e-1;
+    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+    const INV_LN2: f64 = std::f64::consts::LOG2_E;
+    const P1: f64 = 1.666_666_666_666_660_2e-1;
+    const P2: f64 = -2.777_777_777_701_559_3e-3;
+    const P3: f64 = 6.613_756_321_437_934e-5;
+    const P4: f64 = -1.653_390_220_546_525_2e-6;
+    const P5: f64 = 4.138_136_797_057_238_5e-8;
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    // Clamped so that 2^k stays a normal number; the ends are selected below.
+    let xc = x.clamp(-708.0, 709.0);
+    let shifted = xc * INV_LN2 + SHIFT;
+    let k = shifted - SHIFT;
+    let hi = xc - k * LN2_HI;
+    let lo = k * LN2_LO;
+    let r = hi - lo;
+    let t = r * r;
+    let c = r - t * (P1 + t * (P2 + t * (P3 + t * (P4 + t * P5))));
+    let y = 1.0 - ((lo - (r * c) / (2.0 - c)) - hi);
+    // k + 2^51 sits in the low mantissa bits of `shifted`; 2^k has exponent field k + 1023.
+    let k_bits = shifted.to_bits().wrapping_sub(SHIFT.to_bits());
+    let two_k = f64::from_bits(k_bits.wrapping_add(1023) << 52);
+    let e = y * two_k;
+    if x < -708.0 {
+        0.0
+    } else if x > 709.782_712_893_384 {
+        f64::INFINITY
+    } else if x.is_nan() {
+        x
+    } else {
+        e
+    }
 }
 
 #[cfg(test)]
@@ -74,6 +128,23 @@ mod tests {
         assert_eq!((s, c), 1e7f64.sin_cos());
     }
 
+    /// Distance in units in the last place.
+    fn ulps(a: f64, b: f64) -> u64 {
+        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
+    }
+
+    #[test]
+    fn exp_ends_and_special_points() {
+        assert_eq!(exp_kernel(0.0), 1.0);
+        assert!(ulps(exp_kernel(1.0), std::f64::consts::E) <= 1);
+        assert!(ulps(exp_kernel(-708.0), (-708.0f64).exp()) <= 1);
+        assert!(ulps(exp_kernel(709.0), 709.0f64.exp()) <= 1);
+        assert_eq!(exp_kernel(-708.5), 0.0);
+        assert_eq!(exp_kernel(-1e300), 0.0);
+        assert_eq!(exp_kernel(710.0), f64::INFINITY);
+        assert!(exp_kernel(f64::NAN).is_nan());
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         #[test]
@@ -82,6 +153,16 @@ mod tests {
             let (se, ce) = x.sin_cos();
             // the reduction error grows like |n|·ulp(π/2 tail) ≪ 1e-16 here
             prop_assert!((s - se).abs() <= 5e-16 && (c - ce).abs() <= 5e-16, "x = {}: {} {} vs {} {}", x, s, c, se, ce);
+        }
+
+        #[test]
+        fn exp_within_one_ulp_of_libm(x in -708.0f64..709.0) {
+            prop_assert!(ulps(exp_kernel(x), x.exp()) <= 1, "x = {}: {} vs {}", x, exp_kernel(x), x.exp());
+        }
+
+        #[test]
+        fn exp_within_one_ulp_near_zero(x in -1.0f64..1.0) {
+            prop_assert!(ulps(exp_kernel(x), x.exp()) <= 1, "x = {}", x);
         }
     }
 }
