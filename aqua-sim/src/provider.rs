@@ -6,6 +6,13 @@
 use aqua_env::Phase;
 use aqua_fem::{ElementLoad, LoadError, LoadProvider, Want};
 use aqua_hydro::assembly::{ElementOutput, Elements, LoadAssembly};
+use std::cell::RefCell;
+
+thread_local! {
+    /// The hydro side's element output, one per thread: 2.7 kB that a fresh value per element
+    /// and evaluation would zero each time (the assembly overwrites what it reports).
+    static LOCAL: RefCell<ElementOutput> = RefCell::new(ElementOutput::default());
+}
 
 /// Water loads for the structural solver: static phase (full current, no waves) or dynamic.
 #[derive(Debug)]
@@ -74,28 +81,29 @@ impl LoadProvider for WaterLoads {
         want: Want,
         out: &mut ElementLoad,
     ) -> Result<(), LoadError> {
-        let mut local = ElementOutput::default();
         let hw = aqua_hydro::Want {
             dfdv: want.dfdv,
             dfdx: want.dfdx,
         };
-        self.assembly.element_load(e, x, v, hw, &mut local);
-        let n = x.len();
-        let dofs = 3 * n;
-        out.force[..n].copy_from_slice(&local.force[..n]);
-        out.added_mass[..n].copy_from_slice(&local.added_mass[..n]);
-        if want.dfdv {
-            for r in 0..dofs {
-                out.dfdv[r][..dofs].copy_from_slice(&local.dfdv[r][..dofs]);
+        LOCAL.with_borrow_mut(|local| {
+            self.assembly.element_load(e, x, v, hw, local);
+            let n = x.len();
+            let dofs = 3 * n;
+            out.force[..n].copy_from_slice(&local.force[..n]);
+            out.added_mass[..n].copy_from_slice(&local.added_mass[..n]);
+            if want.dfdv {
+                for r in 0..dofs {
+                    out.dfdv[r][..dofs].copy_from_slice(&local.dfdv[r][..dofs]);
+                }
+                out.has_dfdv = true;
             }
-            out.has_dfdv = true;
-        }
-        if want.dfdx {
-            for r in 0..dofs {
-                out.dfdx[r][..dofs].copy_from_slice(&local.dfdx[r][..dofs]);
+            if want.dfdx {
+                for r in 0..dofs {
+                    out.dfdx[r][..dofs].copy_from_slice(&local.dfdx[r][..dofs]);
+                }
+                out.has_dfdx = true;
             }
-            out.has_dfdx = true;
-        }
+        });
         Ok(())
     }
 
