@@ -72,9 +72,10 @@ pub fn sin_cos_kernel(x: f64) -> (f64, f64) {
 
 /// e^x without a branch or a call (so that a loop of it vectorises): the reduction
 /// x = k·ln 2 + r, |r| ≤ ½ ln 2, and the rational kernel of fdlibm's `exp` (Remez, error below
-/// 2^−59 on that interval), then 2^k from its exponent bits. Within 1 ulp of the exact value
-/// for −708 ≤ x ≤ 709 (tested against `f64::exp`); 0 below −708 (where e^x < 3.3e−308),
-/// +∞ above 709.78, NaN for NaN.
+/// 2^−59 on that interval), then the scaling by 2^k as 2^a·2^b with a + b = k, |a|, |b| ≤ 512,
+/// each built from its exponent bits (2^1024 itself is not a double). Within 1 ulp of the
+/// exact value for −708 ≤ x ≤ ln(f64::MAX) ≈ 709.78 (tested against `f64::exp`); 0 below −708
+/// (where e^x < 3.3e−308), +∞ above ln(f64::MAX), NaN for NaN.
 #[inline(always)]
 pub fn exp_kernel(x: f64) -> f64 {
     const LN2_HI: f64 = 6.931_471_803_691_238e-1;
@@ -85,9 +86,11 @@ pub fn exp_kernel(x: f64) -> f64 {
     const P3: f64 = 6.613_756_321_437_934e-5;
     const P4: f64 = -1.653_390_220_546_525_2e-6;
     const P5: f64 = 4.138_136_797_057_238_5e-8;
+    /// ln(f64::MAX).
+    const X_MAX: f64 = 709.782_712_893_384;
     const SHIFT: f64 = 6_755_399_441_055_744.0;
-    // Clamped so that 2^k stays a normal number; the ends are selected below.
-    let xc = x.clamp(-708.0, 709.0);
+    // Clamped so that k stays in [−1021, 1024]; the ends are selected below.
+    let xc = x.clamp(-708.0, X_MAX);
     let shifted = xc * INV_LN2 + SHIFT;
     let k = shifted - SHIFT;
     let hi = xc - k * LN2_HI;
@@ -96,13 +99,19 @@ pub fn exp_kernel(x: f64) -> f64 {
     let t = r * r;
     let c = r - t * (P1 + t * (P2 + t * (P3 + t * (P4 + t * P5))));
     let y = 1.0 - ((lo - (r * c) / (2.0 - c)) - hi);
-    // k + 2^51 sits in the low mantissa bits of `shifted`; 2^k has exponent field k + 1023.
-    let k_bits = shifted.to_bits().wrapping_sub(SHIFT.to_bits());
-    let two_k = f64::from_bits(k_bits.wrapping_add(1023) << 52);
-    let e = y * two_k;
+    // An integer m sits as m + 2^51 in the low mantissa bits of m + SHIFT, so its bits minus
+    // SHIFT's are m; 2^m has exponent field m + 1023. Both factors and both products are
+    // normal numbers, so the scaling is exact.
+    let half = k * 0.5 + SHIFT;
+    let a = half - SHIFT;
+    let pow2 = |m_plus_shift: f64| {
+        let m = m_plus_shift.to_bits().wrapping_sub(SHIFT.to_bits());
+        f64::from_bits(m.wrapping_add(1023) << 52)
+    };
+    let e = (y * pow2(half)) * pow2((k - a) + SHIFT);
     if x < -708.0 {
         0.0
-    } else if x > 709.782_712_893_384 {
+    } else if x > X_MAX {
         f64::INFINITY
     } else if x.is_nan() {
         x
@@ -139,6 +148,9 @@ mod tests {
         assert!(ulps(exp_kernel(1.0), std::f64::consts::E) <= 1);
         assert!(ulps(exp_kernel(-708.0), (-708.0f64).exp()) <= 1);
         assert!(ulps(exp_kernel(709.0), 709.0f64.exp()) <= 1);
+        for x in [709.5, 709.78, 709.782_712_893_384] {
+            assert!(ulps(exp_kernel(x), x.exp()) <= 1, "x = {x}");
+        }
         assert_eq!(exp_kernel(-708.5), 0.0);
         assert_eq!(exp_kernel(-1e300), 0.0);
         assert_eq!(exp_kernel(710.0), f64::INFINITY);
@@ -156,7 +168,7 @@ mod tests {
         }
 
         #[test]
-        fn exp_within_one_ulp_of_libm(x in -708.0f64..709.0) {
+        fn exp_within_one_ulp_of_libm(x in -708.0f64..709.782) {
             prop_assert!(ulps(exp_kernel(x), x.exp()) <= 1, "x = {}: {} vs {}", x, exp_kernel(x), x.exp());
         }
 

@@ -293,14 +293,7 @@ impl SymmetricSolver {
         let mut correction = f64::INFINITY;
         self.last_sweeps = 0;
         loop {
-            // res = b − J·y
-            res.copy_from_slice(&self.b);
-            for c in 0..self.n {
-                let yc = y[c];
-                for p in col_ptr[c]..col_ptr[c + 1] {
-                    res[row_idx[p]] -= self.factored[p] * yc;
-                }
-            }
+            self.residual(col_ptr, row_idx, y, res);
             let rn = norm(res);
 
             if !rn.is_finite() {

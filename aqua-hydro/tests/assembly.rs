@@ -49,6 +49,10 @@ struct Out {
 }
 
 fn run(asm: &mut LoadAssembly, t: f64, x: &[[f64; 3]], v: &[[f64; 3]]) -> Out {
+    run_in(asm, t, Phase::Dynamic, x, v)
+}
+
+fn run_in(asm: &mut LoadAssembly, t: f64, phase: Phase, x: &[[f64; 3]], v: &[[f64; 3]]) -> Out {
     let n = asm.n_nodes();
     let mut o = Out {
         f: vec![[0.0; 3]; n],
@@ -58,7 +62,7 @@ fn run(asm: &mut LoadAssembly, t: f64, x: &[[f64; 3]], v: &[[f64; 3]]) -> Out {
     };
     asm.evaluate(
         t,
-        Phase::Dynamic,
+        phase,
         x,
         v,
         Outputs {
@@ -530,35 +534,64 @@ fn wave_sea() -> Sea {
 
 #[test]
 fn flow_is_reused_only_at_the_same_state() {
-    // `prepare` keeps the sea of the last state it saw; a state that differs in time or in a
-    // single coordinate must see its own flow, i.e. equal what a fresh assembly computes.
+    // `prepare` keeps the sea of the last state it saw; a state that differs in time, phase or
+    // a single coordinate of a used node must see its own flow, i.e. equal what a fresh
+    // assembly computes. Run with every node used, and with an extra node no element uses
+    // (the assembly then keeps the used nodes' positions only).
     let (x, els) = mixed();
-    let n = x.len();
-    let v = vec![[0.01, 0.02, -0.03]; n];
-    let fresh = |t: f64, x: &[[f64; 3]]| {
+    for unused in [false, true] {
+        let mut x = x.clone();
+        if unused {
+            x.push([9.0, 9.0, -1.0]);
+        }
+        let n = x.len();
+        let v = vec![[0.01, 0.02, -0.03]; n];
+        let fresh = |t: f64, phase: Phase, x: &[[f64; 3]]| {
+            let mut asm = LoadAssembly::new(wave_sea(), n, els.clone()).unwrap();
+            run_in(&mut asm, t, phase, x, &v).f
+        };
         let mut asm = LoadAssembly::new(wave_sea(), n, els.clone()).unwrap();
-        run(&mut asm, t, x, &v).f
-    };
-    let mut asm = LoadAssembly::new(wave_sea(), n, els.clone()).unwrap();
-    let at_1 = run(&mut asm, 1.0, &x, &v).f;
-    assert_eq!(run(&mut asm, 1.0, &x, &v).f, at_1, "same state, same loads");
-    let at_2 = run(&mut asm, 2.0, &x, &v).f;
-    assert_eq!(at_2, fresh(2.0, &x), "a new time must re-evaluate the sea");
-    assert_ne!(at_2, at_1);
-    let mut moved = x.clone();
-    moved[4][2] -= 0.2;
-    let at_moved = run(&mut asm, 2.0, &moved, &v).f;
-    assert_eq!(
-        at_moved,
-        fresh(2.0, &moved),
-        "a moved node must re-evaluate the sea"
-    );
-    assert_ne!(at_moved, at_2);
-    assert_eq!(
-        run(&mut asm, 1.0, &x, &v).f,
-        at_1,
-        "back to the first state"
-    );
+        // Statics first, then dynamics at the same time and positions (how every run starts).
+        let st = run_in(&mut asm, 0.0, Phase::Static, &x, &v).f;
+        let dy = run_in(&mut asm, 0.0, Phase::Dynamic, &x, &v).f;
+        assert_eq!(
+            dy,
+            fresh(0.0, Phase::Dynamic, &x),
+            "a new phase must re-evaluate"
+        );
+        assert_ne!(dy, st);
+        let at_1 = run(&mut asm, 1.0, &x, &v).f;
+        assert_eq!(run(&mut asm, 1.0, &x, &v).f, at_1, "same state, same loads");
+        let at_2 = run(&mut asm, 2.0, &x, &v).f;
+        assert_eq!(
+            at_2,
+            fresh(2.0, Phase::Dynamic, &x),
+            "a new time must re-evaluate"
+        );
+        assert_ne!(at_2, at_1);
+        // Node 0 is 2 m under water: the flow there depends on its depth and on x.
+        for (c, d) in [(2, -0.2), (0, 0.3)] {
+            let mut moved = x.clone();
+            moved[0][c] += d;
+            let at_moved = run(&mut asm, 2.0, &moved, &v).f;
+            assert_eq!(at_moved, fresh(2.0, Phase::Dynamic, &moved), "a moved node");
+            assert_ne!(at_moved, at_2);
+        }
+        if unused {
+            let mut moved = x.clone();
+            moved[n - 1][0] += 1.0;
+            assert_eq!(
+                run(&mut asm, 2.0, &moved, &v).f,
+                at_2,
+                "an unused node is not read"
+            );
+        }
+        assert_eq!(
+            run(&mut asm, 1.0, &x, &v).f,
+            at_1,
+            "back to the first state"
+        );
+    }
 }
 
 /// A rigid cylindrical cage: radius 5 m, 16 sides, 5 rows of 1 m, fan-triangle bottom.

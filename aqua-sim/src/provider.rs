@@ -85,6 +85,8 @@ impl LoadProvider for WaterLoads {
             dfdv: want.dfdv,
             dfdx: want.dfdx,
         };
+        // The reused output holds only what the assembly wrote for this element's nodes.
+        debug_assert_eq!(x.len(), self.assembly.element_nodes(e).len());
         LOCAL.with_borrow_mut(|local| {
             self.assembly.element_load(e, x, v, hw, local);
             let n = x.len();

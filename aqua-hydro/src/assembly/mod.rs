@@ -263,9 +263,10 @@ pub struct LoadAssembly {
     all_used: bool,
     scratch_flow: Vec<FlowPoint>,
     flow: Vec<NodeFlow>,
-    /// Time (bits) and phase of the flow in `flow`, and the positions it was evaluated at
-    /// (every node if `all_used`, else the `used` nodes in order): a `prepare` at the same
-    /// state reuses it (the solvers re-evaluate a state to form its Jacobian).
+    /// Time t [s] (bits) and phase of the flow in `flow`, and the positions [m] it was
+    /// evaluated at (every node if `all_used`, else the `used` nodes in order): a `prepare` at
+    /// the same state, bit for bit, reuses it (the solvers re-evaluate a state to form its
+    /// Jacobian).
     flow_key: Option<(u64, Phase)>,
     flow_pts: Vec<[f64; 3]>,
     wake: Vec<WakeCell>,
@@ -716,7 +717,8 @@ impl LoadAssembly {
         if self.flow_is_current(t, phase, x) {
             return Ok(());
         }
-        self.flow_key = Some((t.to_bits(), phase));
+        // Keyed only once the flow below is complete.
+        self.flow_key = None;
         if self.all_used {
             self.flow_pts.copy_from_slice(x);
         } else {
@@ -745,6 +747,7 @@ impl LoadAssembly {
                 };
             }
         }
+        self.flow_key = Some((t.to_bits(), phase));
         Ok(())
     }
 
@@ -754,13 +757,14 @@ impl LoadAssembly {
         if self.flow_key != Some((t.to_bits(), phase)) {
             return false;
         }
+        let same = |a: &[f64; 3], b: &[f64; 3]| a.map(f64::to_bits) == b.map(f64::to_bits);
         if self.all_used {
-            self.flow_pts.as_slice() == x
+            self.flow_pts.iter().zip(x).all(|(p, q)| same(p, q))
         } else {
             self.used
                 .iter()
                 .zip(&self.flow_pts)
-                .all(|(&nd, p)| x[nd] == *p)
+                .all(|(&nd, p)| same(&x[nd], p))
         }
     }
 
