@@ -561,7 +561,13 @@ fn flow_is_reused_only_at_the_same_state() {
         );
         assert_ne!(dy, st);
         let at_1 = run(&mut asm, 1.0, &x, &v).f;
+        assert_eq!(asm.sea_evaluations(), (3, 0));
         assert_eq!(run(&mut asm, 1.0, &x, &v).f, at_1, "same state, same loads");
+        assert_eq!(
+            asm.sea_evaluations(),
+            (3, 1),
+            "the repeated state reuses the flow"
+        );
         let at_2 = run(&mut asm, 2.0, &x, &v).f;
         assert_eq!(
             at_2,

@@ -269,6 +269,8 @@ pub struct LoadAssembly {
     /// Jacobian).
     flow_key: Option<(u64, Phase)>,
     flow_pts: Vec<[f64; 3]>,
+    /// `prepare` calls that evaluated the sea, and those that reused its flow.
+    sea_counts: (usize, usize),
     wake: Vec<WakeCell>,
     wake_ready: bool,
     /// Cage-to-cage wake: participating cages, and (element, its wake group) of every
@@ -560,6 +562,7 @@ impl LoadAssembly {
             scratch_flow: vec![FlowPoint::default(); if all_used { n_nodes } else { n_scratch }],
             flow: vec![NodeFlow::default(); n_nodes],
             flow_key: None,
+            sea_counts: (0, 0),
             flow_pts: vec![[0.0; 3]; if all_used { n_nodes } else { n_scratch }],
             wake: vec![WakeCell::default(); ne],
             wake_ready: false,
@@ -715,8 +718,10 @@ impl LoadAssembly {
             self.update_wake(t, x)?;
         }
         if self.flow_is_current(t, phase, x) {
+            self.sea_counts.1 += 1;
             return Ok(());
         }
+        self.sea_counts.0 += 1;
         // Keyed only once the flow below is complete.
         self.flow_key = None;
         if self.all_used {
@@ -749,6 +754,12 @@ impl LoadAssembly {
         }
         self.flow_key = Some((t.to_bits(), phase));
         Ok(())
+    }
+
+    /// How many `prepare` calls evaluated the sea, and how many reused the flow of the same
+    /// state (time, phase and positions bit for bit).
+    pub fn sea_evaluations(&self) -> (usize, usize) {
+        self.sea_counts
     }
 
     /// Whether `flow` already holds the sea at positions `x` at (t, phase): same time and
