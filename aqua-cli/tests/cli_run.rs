@@ -720,6 +720,28 @@ fn interrupt_during_statics_keeps_the_best_state_as_step_0() {
     let hist = json["static_residual_history"].as_array().unwrap();
     assert!(!hist.is_empty());
     assert!(hist.iter().all(|v| v.as_f64().is_some_and(f64::is_finite)));
+    // Step 0 is the last accepted iterate under the full current, not the as-built net (all
+    // twines slack, no reaction, volume ratio 1), which is what the last converged load
+    // increment would be when the full load is applied at once.
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap_or(f64::NAN))
+        .collect();
+    let col = |name: &str| row[head.iter().position(|h| *h == name).unwrap()];
+    // An iterate, not an equilibrium: only that it has moved from the as-built net is sure.
+    assert!(col("Fx_net") > 0.0, "Fx_net {}", col("Fx_net"));
+    let reaction = col("Rx").abs() + col("Rz").abs();
+    assert!(reaction > 0.0, "the as-built net, with no reactions");
+    assert!(
+        (col("volume_ratio") - 1.0).abs() > 1e-3,
+        "the net has not moved: volume ratio {}",
+        col("volume_ratio")
+    );
 }
 
 #[test]
@@ -750,6 +772,31 @@ fn check_warns_about_a_line_end_held_by_nothing() {
     let (code, stdout, stderr) = aqua(&["check", scene.to_str().unwrap()]);
     assert_eq!(code, 0);
     assert!(!format!("{stdout}{stderr}").contains("neither fixed"));
+    // A free anchor: an anchor is a position, so the advice cannot be to attach it to a node.
+    let text = std::fs::read_to_string(&scene).unwrap().replace(
+        "fixed = [\"anchor\", \"fairlead\"]",
+        "fixed = [\"fairlead\"]",
+    );
+    std::fs::write(&scene, text).unwrap();
+    let (code, stdout, stderr) = aqua(&["check", scene.to_str().unwrap()]);
+    let all = format!("{stdout}{stderr}");
+    assert_eq!(code, 0, "{all}");
+    assert!(all.contains("its anchor is neither fixed"), "{all}");
+    assert!(all.contains("fall to the seabed"), "{all}");
+    assert!(!all.contains("set `fairlead`"), "{all}");
+}
+
+#[test]
+fn check_on_a_sweep_file_points_to_aqua_sweep() {
+    let file = root().join("examples/chain-cases.toml");
+    let (code, stdout, stderr) = aqua(&["check", file.to_str().unwrap()]);
+    let all = format!("{stdout}{stderr}");
+    assert_ne!(code, 0, "{all}");
+    assert!(all.contains("this is a sweep file"), "{all}");
+    assert!(
+        all.contains(&format!("aqua sweep {}", file.display())),
+        "{all}"
+    );
 }
 
 #[test]

@@ -72,6 +72,28 @@ pub enum FemError {
         /// Every node of the part (for naming it).
         nodes: Vec<usize>,
     },
+    /// A connected part with no node fixed in z and no seabed contact whose weight (with the
+    /// point forces) exceeds the largest buoyancy the water can give it, fully submerged:
+    /// nothing can hold it up, it sinks without end.
+    #[error(
+        "the part of the structure containing node {first_node} ({n_nodes} nodes) would sink: \
+         its weight, {weight:.4e} N, is more than the buoyancy it has fully submerged, \
+         {buoyancy:.4e} N, and nothing else holds it up (no node fixed in z, no seabed contact \
+         to rest on); fix a node in z, hang it from a float or a held part, lighten it or give \
+         it more buoyancy"
+    )]
+    Sinking {
+        /// Lowest node index of the part.
+        first_node: usize,
+        /// Number of nodes in the part.
+        n_nodes: usize,
+        /// Downward resultant of its weights and point forces [N].
+        weight: f64,
+        /// Its largest buoyancy (every member fully submerged) [N].
+        buoyancy: f64,
+        /// Every node of the part (for naming it).
+        nodes: Vec<usize>,
+    },
     /// The load provider reported an error.
     #[error("load provider, element {element}: {message}")]
     Load {

@@ -116,6 +116,15 @@ pub trait LoadProvider: Sync {
     /// is not reported as unsupported. Statics assumes that no provider load restores
     /// horizontally: a part with no node fixed in x (or y) whose loads push it along x (or
     /// y) is reported as drifting ([`crate::FemError::Drifting`]).
+    /// Adds to `lift` the largest upward force [N] the provider can exert on each node: its
+    /// buoyancy with every member fully submerged. Returns false (the default) if the
+    /// provider cannot tell; statics then does not check whether a part free in z is held up
+    /// ([`crate::FemError::Sinking`]).
+    fn max_buoyancy(&self, lift: &mut [f64]) -> bool {
+        let _ = lift;
+        false
+    }
+
     fn mark_restoring_nodes(&self, held: &mut [bool]) {
         let _ = held;
     }

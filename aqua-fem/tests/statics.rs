@@ -682,3 +682,147 @@ fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
         "{along_y:?}"
     );
 }
+
+/// A chain stretched straight between two fixed ends 10 % further apart than its length,
+/// with EA from 1e8 to 1e12 N: its supports carry exactly its weight (vertical equilibrium of
+/// the whole line) and balance each other horizontally, at the default tolerance. The
+/// tolerance must scale with the loads, not with the reactions: those are the pretension EA·ε,
+/// up to 1e11 N here, and a tolerance relative to them accepted the as-built line after one
+/// iteration with a quarter of the weight carried (docs/theory/fem.md#static-solver).
+#[test]
+fn a_taut_stiff_line_carries_its_weight_at_any_axial_stiffness() {
+    let (n, w) = (40, 1000.0);
+    // At 1e12 the residual's round-off floor (ε_mach·EA·(|x| + L0)/L0 per element, 0.3 N
+    // here) lets the supports' sum be off by some 1e-5 of the weight.
+    for (ea, rel) in [(1e8, 1e-6), (1e10, 1e-6), (1e12, 1e-5)] {
+        let mut b = ModelBuilder::new(env_air());
+        let g = b
+            .add_group("chain", CableSection::new(ea, w / DEFAULT_GRAVITY))
+            .unwrap();
+        let nodes = add_line(&mut b, [0.0; 3], [110.0, 0.0, 0.0], n, 100.0, g, 0.0);
+        b.fix(nodes[0], Dofs::ALL).unwrap();
+        b.fix(nodes[n], Dofs::ALL).unwrap();
+        let m = b.build().unwrap();
+        let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+        let (ra, rb) = (
+            sol.outputs.reaction[nodes[0]],
+            sol.outputs.reaction[nodes[n]],
+        );
+        let weight = w * 100.0;
+        assert!(
+            (ra[2] + rb[2] - weight).abs() <= rel * weight,
+            "EA {ea:e}: supports carry {} N of {weight} N",
+            ra[2] + rb[2]
+        );
+        assert!(
+            (ra[0] + rb[0]).abs() <= rel * weight,
+            "EA {ea:e}: horizontal reactions {} + {}",
+            ra[0],
+            rb[0]
+        );
+        // By symmetry each end carries half.
+        assert!((ra[2] - rb[2]).abs() <= rel * weight, "{ra:?} {rb:?}");
+        assert!(sol.report.warnings.is_empty(), "{:?}", sol.report.warnings);
+        assert!(
+            sol.report.iterations <= 20,
+            "{} iterations",
+            sol.report.iterations
+        );
+    }
+    // At EA = 1e16 the tensions' round-off (ε_mach·EA·(|x| + L0)/L0 per element) is a few
+    // per cent of the weight: the solve says so instead of reporting the forces as exact.
+    let mut b = ModelBuilder::new(env_air());
+    let g = b
+        .add_group("chain", CableSection::new(1e16, w / DEFAULT_GRAVITY))
+        .unwrap();
+    let nodes = add_line(&mut b, [0.0; 3], [110.0, 0.0, 0.0], n, 100.0, g, 0.0);
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[n], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    assert!(
+        sol.report
+            .warnings
+            .iter()
+            .any(|s| s.contains("exact only to about")),
+        "{:?}",
+        sol.report.warnings
+    );
+}
+
+/// Buoyancy of a constant upward force per node (a line deep under water): restoring in the
+/// provider's sense, with a known largest value.
+struct Buoyancy {
+    nodes: Vec<[usize; 1]>,
+    lift: f64,
+}
+
+impl LoadProvider for Buoyancy {
+    fn n_elements(&self) -> usize {
+        self.nodes.len()
+    }
+    fn element_nodes(&self, e: usize) -> &[usize] {
+        &self.nodes[e]
+    }
+    fn max_buoyancy(&self, lift: &mut [f64]) -> bool {
+        for n in &self.nodes {
+            lift[n[0]] += self.lift;
+        }
+        true
+    }
+    fn mark_restoring_nodes(&self, held: &mut [bool]) {
+        for n in &self.nodes {
+            held[n[0]] = true;
+        }
+    }
+    fn element_load(
+        &self,
+        _e: usize,
+        _t: f64,
+        _x: &[[f64; 3]],
+        _v: &[[f64; 3]],
+        want: Want,
+        out: &mut ElementLoad,
+    ) -> std::result::Result<(), LoadError> {
+        out.force[0] = [0.0, 0.0, self.lift];
+        out.has_dfdv = want.dfdv;
+        out.has_dfdx = want.dfdx;
+        Ok(())
+    }
+}
+
+/// A rope heavier than its buoyancy, held by nothing in z and with no seabed, sinks without
+/// end: a `Sinking` error at once with its weight and buoyancy, not hundreds of iterations.
+/// Held at one node, the same rope hangs in equilibrium.
+#[test]
+fn a_part_heavier_than_its_buoyancy_and_held_by_nothing_is_an_error() {
+    let build = |hold: bool| {
+        let mut b = ModelBuilder::new(env_air());
+        let g = b
+            .add_group("rope", CableSection::new(1e6, 3.0 / DEFAULT_GRAVITY))
+            .unwrap();
+        let nodes = add_line(&mut b, [0.0; 3], [4.0, 0.0, 0.0], 4, 4.0, g, 0.0);
+        if hold {
+            b.fix(nodes[0], Dofs::ALL).unwrap();
+        }
+        (b.build().unwrap(), nodes)
+    };
+    // Lumped weight: 3 N/m over 4 m = 12 N; buoyancy 2 N at each of the 5 nodes = 10 N.
+    let (m, nodes) = build(false);
+    let mut water = Buoyancy {
+        nodes: nodes.iter().map(|&n| [n]).collect(),
+        lift: 2.0,
+    };
+    match solve_static(&m, &mut water, &StaticSettings::default()) {
+        Err(FemError::Sinking {
+            weight, buoyancy, ..
+        }) => {
+            assert!((weight - 12.0).abs() < 1e-12, "{weight}");
+            assert!((buoyancy - 10.0).abs() < 1e-12, "{buoyancy}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let (m, _) = build(true);
+    let sol = solve_static(&m, &mut water, &StaticSettings::default()).unwrap();
+    assert!(sol.report.relative_residual <= 1e-6);
+}

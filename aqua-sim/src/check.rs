@@ -265,18 +265,24 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64;
     let per_iter_dynamic = per_iter + 200e-9 * (ncomp * built.model.n_nodes()) as f64;
     // Statics (Levenberg–Marquardt, docs/theory/fem.md#static-solver): the iterations grow
-    // slowly with the free DOFs (10 m cage 67 for ~250, mooring chain 155 for 237, moored cage
-    // 242 for 1143, reference cage 130 for 3027, 1.25 m cage 244 for ~12 000), each about four
+    // slowly with the free DOFs (10 m cage 60 for ~250, buoy mooring 92 for 129, moored cage
+    // 94 for 1143, reference cage 130 for 3027, 1.25 m cage 274 for ~12 000), each about 2.5
     // of these units (factorisation, Jacobian with finite-difference water-load derivatives,
-    // trial evaluations; 2026-12-05: reference cage 2.1 s estimated for 1.5 s, farm 2.5 s for
-    // 1.3 s, buoy mooring and mooring chain within 3× of their whole runs of 0.03 and 0.11 s).
+    // trial evaluations). Measured against `analysis.kind = "static"` runs (2026-12-05):
+    // reference cage 1.3 s estimated for 1.41–1.44 s, farm 1.6 s for 1.24–1.30 s, moored cage
+    // 0.3 s for 0.20 s, buoy mooring 20 ms for 10 ms, mooring chain 5.4 ms for 4–5 ms.
+    // Lines alone (no net panels, nothing floating) start from their stretched touchdown
+    // shape and take 12–15 iterations at 80–1280 segments (2026-12-05).
+    let lines_only = el.panels.is_empty() && built.design.floaters.is_empty();
     let static_iterations = if free == 0 {
         1.0
+    } else if lines_only {
+        15.0
     } else {
         100.0 + 0.012 * free as f64
     };
     let estimated_static = if kind != AnalysisKind::Dynamic {
-        4.0 * per_iter * static_iterations
+        2.5 * per_iter * static_iterations
     } else {
         0.0
     };

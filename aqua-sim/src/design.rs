@@ -199,8 +199,8 @@ impl DesignChecks {
                 format!(
                     "{} is under water at static equilibrium: {sunk} of {} nodes have their top \
                      more than its size {} m below the still-water level (deepest top at z = \
-                     {:.3} m); it no longer floats. Give it more volume or hang less weight on \
-                     it{}",
+                     {:.3} m); it no longer floats. Give it more volume, hang less weight on it, \
+                     or lengthen a line that pulls it under{}",
                     f.label,
                     z.len(),
                     f.size,

@@ -23,6 +23,8 @@ pub struct WaterLoads {
     pub phase: Phase,
     /// Nodes that carry buoyancy (lines with a volume, point bodies with a volume).
     buoyant: Vec<usize>,
+    /// Per node: its buoyancy with every member fully submerged [N].
+    max_lift: Vec<f64>,
 }
 
 impl WaterLoads {
@@ -43,10 +45,32 @@ impl WaterLoads {
             .collect();
         buoyant.sort_unstable();
         buoyant.dedup();
+        // Fully submerged buoyancy: ρ·g·(π/4)·d_v²·L0 of a line (half to each end), ρ·g·V of
+        // a point body (docs/theory/hydrodynamics.md).
+        let rho_g = assembly.sea().density() * assembly.sea().gravity();
+        let n = elements
+            .lines
+            .iter()
+            .flat_map(|l| l.nodes)
+            .chain(elements.points.iter().map(|p| p.node))
+            .max()
+            .map_or(0, |i| i + 1);
+        let mut max_lift = vec![0.0; n];
+        for l in &elements.lines {
+            let d = l.props.volume_diameter;
+            let f = rho_g * std::f64::consts::FRAC_PI_4 * d * d * l.props.rest_length;
+            for &i in &l.nodes {
+                max_lift[i] += 0.5 * f;
+            }
+        }
+        for p in &elements.points {
+            max_lift[p.node] += rho_g * p.props.volume;
+        }
         Self {
             assembly,
             phase,
             buoyant,
+            max_lift,
         }
     }
 }
@@ -107,6 +131,13 @@ impl LoadProvider for WaterLoads {
             }
         });
         Ok(())
+    }
+
+    fn max_buoyancy(&self, lift: &mut [f64]) -> bool {
+        for (l, m) in lift.iter_mut().zip(&self.max_lift) {
+            *l += m;
+        }
+        true
     }
 
     fn mark_restoring_nodes(&self, held: &mut [bool]) {

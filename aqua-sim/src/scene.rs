@@ -856,7 +856,8 @@ pub fn read_scene_with(path: &Path, overrides: &[Override]) -> Result<Scene> {
 /// be valid; each change is then checked exactly like the file, and the first one that makes
 /// the scene invalid is named in the error. Messages keep the file's line numbers.
 pub fn parse_scene_with(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
-    let raw: RawScene = toml::from_str(text).map_err(|e| file_error(path, e))?;
+    let raw: RawScene = toml::from_str(text)
+        .map_err(|e| sweep_file_error(path, text).unwrap_or_else(|| file_error(path, e)))?;
     let ctx = Ctx { path, text };
     if overrides.is_empty() {
         return ctx.scene(raw, Vec::new());
@@ -885,6 +886,18 @@ pub fn parse_scene_with(text: &str, path: &Path, overrides: &[Override]) -> Resu
 
 fn file_error(path: &Path, e: toml::de::Error) -> SimError {
     SimError::input(format!("{}: {e}", path.display()))
+}
+
+/// A sweep file (it names the `scene` it varies) given where a scene is expected: say so.
+fn sweep_file_error(path: &Path, text: &str) -> Option<SimError> {
+    let table: Table = toml::from_str(text).ok()?;
+    table.get("scene")?.as_str()?;
+    Some(SimError::input(format!(
+        "{}: this is a sweep file (it names the `scene` it varies), not a scene; run its cases \
+         with `aqua sweep {}`",
+        path.display(),
+        path.display()
+    )))
 }
 
 impl RawScene {

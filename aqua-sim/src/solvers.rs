@@ -25,9 +25,9 @@ pub fn static_equilibrium(
 ) -> Result<StaticSolution> {
     solve_static_observed(model, loads, settings, progress).map_err(|e| {
         let nodes: Vec<usize> = match &e {
-            FemError::Drifting { nodes, .. } | FemError::Unconstrained { nodes, .. } => {
-                nodes.clone()
-            }
+            FemError::Drifting { nodes, .. }
+            | FemError::Unconstrained { nodes, .. }
+            | FemError::Sinking { nodes, .. } => nodes.clone(),
             FemError::StaticFailed(f) => vec![f.worst_node],
             _ => Vec::new(),
         };

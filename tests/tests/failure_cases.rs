@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{run_json, scratch, summary};
+use common::{example, run_json, scratch, summary};
 use std::path::{Path, PathBuf};
 
 const G: f64 = 9.81;
@@ -184,6 +184,39 @@ fn an_unanchored_buoy_line_in_a_current_stops_at_once_naming_it() {
     }
     assert!(!err.contains("iterations"), "it iterated first: {err}");
     let (out, err) = run(&d, "anchored", &scene("[\"anchor\"]"));
+    assert!(err.is_none(), "{err:?}");
+    assert_eq!(run_json(&out)["status"], "completed");
+}
+
+/// The reference cage with nothing holding its top ring, in a sea without a seabed, with
+/// sinkers heavier than the whole net's buoyancy: it sinks without end. The solve must say so
+/// before iterating, naming the cage, with its weight and buoyancy; fixing the ring, it solves.
+#[test]
+fn a_cage_held_by_nothing_that_sinks_stops_at_once_naming_it() {
+    let d = scratch("sinking");
+    let scene = |fixed: &str| {
+        example("reference-cage.toml")
+            .replace("depth = 60.0", "depth = \"infinite\"")
+            .replace("element_length = 2.5", "element_length = 10.0")
+            .replace(
+                "sinker_weight_per_metre = 392.4",
+                "sinker_weight_per_metre = 2000.0",
+            )
+            .replace("fixed = [\"top_ring\"]", &format!("fixed = {fixed}"))
+            .replace("kind = \"static+dynamic\"", "kind = \"static\"")
+    };
+    let (_, err) = run(&d, "free", &scene("[]"));
+    let err = err.expect("a cage heavier than its buoyancy, held by nothing, sinks");
+    for want in [
+        "cage 'cage0'",
+        "would sink",
+        "more than the buoyancy it has fully submerged",
+        "fix a node in z",
+    ] {
+        assert!(err.contains(want), "missing {want:?} in: {err}");
+    }
+    assert!(!err.contains("iterations"), "it iterated first: {err}");
+    let (out, err) = run(&d, "held", &scene("[\"top_ring\"]"));
     assert!(err.is_none(), "{err:?}");
     assert_eq!(run_json(&out)["status"], "completed");
 }

@@ -297,11 +297,21 @@ fn free_line_end(
     if other_line || other_panel {
         return None;
     }
+    let fall = if model.environment().seabed.is_some() {
+        "fall to the seabed"
+    } else {
+        "sink or float with nothing to hold it (the sea has no seabed)"
+    };
+    // Only a fairlead can name a node of another object; an anchor is a position.
+    let fix = if end == "fairlead" {
+        "Add \"fairlead\" to the line's `fixed`, give it a [[prescribed]] motion, or set \
+         `fairlead` to a node such as \"cage0/top_ring[0]\""
+    } else {
+        "Add \"anchor\" to the line's `fixed` or give it a [[prescribed]] motion"
+    };
     Some(format!(
         "line '{line}': its {end} is neither fixed, prescribed nor attached to another object; \
-         the line will fall to the seabed with a zero {end} force. Add \"{end}\" to the line's \
-         `fixed`, give it a [[prescribed]] motion, or set `fairlead` to a node such as \
-         \"cage0/top_ring[0]\""
+         the line will {fall} with a zero {end} force. {fix}"
     ))
 }
 
