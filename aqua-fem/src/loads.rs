@@ -111,20 +111,20 @@ pub trait LoadProvider: Sync {
         want: Want,
         out: &mut ElementLoad,
     ) -> Result<(), LoadError>;
-    /// Marks nodes on which the provider exerts a position-dependent *vertical* restoring
-    /// force (buoyancy that changes with the draft), so that a part held only by such loads
-    /// is not reported as unsupported. Statics assumes that no provider load restores
-    /// horizontally: a part with no node fixed in x (or y) whose loads push it along x (or
-    /// y) is reported as drifting ([`crate::FemError::Drifting`]).
-    /// Adds to `lift` the largest upward force [N] the provider can exert on each node: its
-    /// buoyancy with every member fully submerged. Returns false (the default) if the
-    /// provider cannot tell; statics then does not check whether a part free in z is held up
-    /// ([`crate::FemError::Sinking`]).
+    /// Adds to `lift` the largest buoyancy [N] the provider can exert on each node: with
+    /// every member fully submerged. Returns false (the default) if the provider cannot tell;
+    /// statics then does not check whether a part free in z is held up
+    /// ([`crate::FemError::Sinking`]). Drag and lift of a current are not counted.
     fn max_buoyancy(&self, lift: &mut [f64]) -> bool {
         let _ = lift;
         false
     }
 
+    /// Marks nodes on which the provider exerts a position-dependent *vertical* restoring
+    /// force (buoyancy that changes with the draft), so that a part held only by such loads
+    /// is not reported as unsupported. Statics assumes that no provider load restores
+    /// horizontally: a part with no node fixed in x (or y) whose loads push it along x (or
+    /// y) is reported as drifting ([`crate::FemError::Drifting`]).
     fn mark_restoring_nodes(&self, held: &mut [bool]) {
         let _ = held;
     }

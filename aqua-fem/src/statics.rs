@@ -169,7 +169,7 @@ const MAX_WAKE_PASSES: usize = 5;
 /// A step is accepted when the merit falls by this fraction of the predicted decrease.
 const RHO_ACCEPT: f64 = 1e-4;
 /// Round-off level of the equilibrium (F_noise) above which the solve warns, relative to
-/// the loads ‖f_ext‖₂.
+/// the loads (`round_off_warning`).
 const NOISE_WARNING: f64 = 1e-4;
 /// A full step the merit rejects is taken on trial (watchdog) only if its residual is at most
 /// this multiple of the iterate's.
@@ -206,6 +206,7 @@ struct Watched {
     step: (f64, f64, f64),
     rn: f64,
     pred: f64,
+    merit_noise: f64,
 }
 
 struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
@@ -279,9 +280,12 @@ fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
 }
 
 /// Connected parts held by nothing.
-pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<()> {
+pub(crate) fn check_supported<P: LoadProvider + ?Sized>(
+    model: &Model,
+    provider: &P,
+    part: &[usize],
+) -> Result<()> {
     let n = model.n_nodes();
-    let part = parts(model, provider);
     let mut held = vec![false; n];
     provider.mark_restoring_nodes(&mut held);
     let seabed = model.env.seabed.is_some();
@@ -313,13 +317,8 @@ pub(crate) fn check_supported<P: LoadProvider + ?Sized>(model: &Model, provider:
 /// seabed friction; docs/theory/fem.md#static-solver). Each axis is judged alone: a part
 /// fixed in y only and pushed along x drifts along x. A resultant below 1e-6 of the part's
 /// Σ|f| is round-off.
-fn check_held_horizontally<P: LoadProvider + ?Sized>(
-    model: &Model,
-    provider: &P,
-    fext: &[[f64; 3]],
-) -> Result<()> {
+fn check_held_horizontally(model: &Model, part: &[usize], fext: &[[f64; 3]]) -> Result<()> {
     let n = model.n_nodes();
-    let part = parts(model, provider);
     // Per part: fixed in x, fixed in y, resultant, Σ|f|.
     let mut fixed = vec![[false; 2]; n];
     let mut sum = vec![[0.0f64; 2]; n];
@@ -361,13 +360,16 @@ fn check_held_horizontally<P: LoadProvider + ?Sized>(
 /// ([`FemError::Sinking`]): without it such a part sinks for hundreds of iterations
 /// (docs/theory/fem.md#static-solver). Skipped if the provider cannot give its largest
 /// buoyancy.
-fn check_held_up<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<()> {
+fn check_held_up<P: LoadProvider + ?Sized>(
+    model: &Model,
+    provider: &P,
+    part: &[usize],
+) -> Result<()> {
     let n = model.n_nodes();
     let mut lift = vec![0.0; n];
     if !provider.max_buoyancy(&mut lift) {
         return Ok(());
     }
-    let part = parts(model, provider);
     let seabed = model.env.seabed.is_some();
     let mut held = vec![false; n];
     let (mut down, mut up) = (vec![0.0f64; n], vec![0.0f64; n]);
@@ -393,6 +395,35 @@ fn check_held_up<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Resul
     Ok(())
 }
 
+/// The warning that the equilibrium's forces are exact only to F_noise [N], when that is more
+/// than `NOISE_WARNING` of the loads: the external forces `fext` at the equilibrium, or the
+/// weights and point forces alone where buoyancy cancels them (a neutral line).
+fn round_off_warning(
+    model: &Model,
+    fext: &[[f64; 3]],
+    f_noise: f64,
+    max_ea: f64,
+) -> Option<String> {
+    let (mut fe, mut fw) = (0.0, 0.0);
+    for ((f, w), p) in fext.iter().zip(&model.weight).zip(&model.point_force) {
+        for k in 0..3 {
+            fe += f[k] * f[k];
+            fw += (w[k] + p[k]).powi(2);
+        }
+    }
+    let loads = fe.sqrt().max(fw.sqrt());
+    (f_noise > NOISE_WARNING * loads).then(|| {
+        format!(
+            "the static equilibrium's forces at the nodes are exact only to about {f_noise:.3e} N \
+             ({:.2} % of the loads, {loads:.3e} N), and resultants such as reactions may be \
+             several times further off: tensions are EA times a length difference, and with EA \
+             up to {max_ea:.3e} N their round-off is that large; a smaller EA (a line this stiff \
+             is rigid either way) gives the same shape with exact forces",
+            100.0 * f_noise / loads,
+        )
+    })
+}
+
 /// Solves for static equilibrium starting from the as-built geometry.
 pub fn solve_static<P: LoadProvider + ?Sized>(
     model: &Model,
@@ -412,8 +443,9 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     observer: &mut dyn FnMut(&StaticProgress) -> StaticControl,
 ) -> Result<StaticSolution> {
     settings.validate()?;
-    check_supported(model, &*provider)?;
-    check_held_up(model, &*provider)?;
+    let part = parts(model, &*provider);
+    check_supported(model, &*provider, &part)?;
+    check_held_up(model, &*provider, &part)?;
     let sys = System::new(model, &*provider)?;
     let n = model.n_nodes();
     let nf = sys.n_free();
@@ -460,7 +492,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     // A part that nothing holds horizontally cannot balance a horizontal load: say so now
     // instead of after hundreds of iterations of drift.
     ctx.eval(1.0, false, false)?;
-    check_held_horizontally(model, &*ctx.prov, &ctx.sys.fext)?;
+    check_held_horizontally(model, &part, &ctx.sys.fext)?;
     let mut report = StaticReport::default();
     let t = settings.time;
     let mut mu = settings.stabilisation;
@@ -533,27 +565,10 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     report.f_ref = ctx.f_ref;
     report.relative_residual = rn / ctx.f_ref;
     report.noise_level = ctx.f_noise / ctx.f_ref;
-    // The loads' scale: the external forces at the equilibrium, or the weights and point
-    // forces alone where buoyancy cancels them (a neutral line).
-    let norm = |v: &mut dyn Iterator<Item = f64>| v.map(|f| f * f).sum::<f64>().sqrt();
-    let f_loads = norm(&mut ctx.sys.fext.iter().flatten().copied()).max(norm(
-        &mut model
-            .weight
-            .iter()
-            .zip(&model.point_force)
-            .flat_map(|(w, p)| (0..3).map(move |k| w[k] + p[k])),
-    ));
-    if !report.interrupted && ctx.f_noise > NOISE_WARNING * f_loads {
-        report.warnings.push(format!(
-            "the static equilibrium is exact only to about {:.3e} N, {:.2} % of the loads \
-             ({:.3e} N): tensions are EA times a length difference, and with EA up to {:.3e} N \
-             their round-off is that large; a smaller EA (a line this stiff is rigid either \
-             way) gives the same shape with exact forces",
-            ctx.f_noise,
-            100.0 * ctx.f_noise / f_loads,
-            f_loads,
-            max_ea
-        ));
+    if !report.interrupted {
+        report
+            .warnings
+            .extend(round_off_warning(model, &ctx.sys.fext, ctx.f_noise, max_ea));
     }
     if ctx.x.iter().flatten().any(|v| !v.is_finite()) {
         return Err(FemError::NonFinite("static solution positions".into()));
@@ -658,19 +673,35 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             *l = c.length;
         }
         self.bend_x = self.sys.bending_energy();
-        let strain: f64 = self
-            .model
-            .elements()
-            .iter()
-            .zip(&self.len_x)
-            .map(|(e, &l)| cable::strain_energy(e, (l - e.l0) / e.l0))
-            .sum();
-        self.merit_noise = 8.0 * f64::EPSILON * (strain + self.bend_x.abs());
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             let (i, k) = (gd / 3, gd % 3);
             self.f_frozen[f] = self.sys.fext[i][k] - self.sys.fbed[i][k];
         }
+        self.merit_noise = self.merit_round_off();
         self.r_x.copy_from_slice(&self.r);
+    }
+
+    /// Round-off level of a merit change from the iterate [J] (after `freeze`): a length is
+    /// computed from coordinates to about ε_mach·(max(|x_a|, |x_b|) + l), so a strain energy
+    /// difference is exact only to T times that, plus ε_mach·W; the frozen work's terms
+    /// f·(x_t − x) to ε_mach·|f|·|x| (×8 margin).
+    fn merit_round_off(&self) -> f64 {
+        let mut sum = self.bend_x.abs();
+        for ((e, c), &l) in self
+            .model
+            .elements()
+            .iter()
+            .zip(&self.sys.cable)
+            .zip(&self.len_x)
+        {
+            let xa = self.x[e.a].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let xb = self.x[e.b].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            sum += c.tension.abs() * (xa.max(xb) + l) + cable::strain_energy(e, (l - e.l0) / e.l0);
+        }
+        for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
+            sum += self.f_frozen[f].abs() * self.x[gd / 3][gd % 3].abs();
+        }
+        8.0 * f64::EPSILON * sum
     }
 
     /// Decrease of the merit from `self.x` to `self.x_trial` (evaluated): strain (axial and
@@ -894,6 +925,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                                 step,
                                 rn,
                                 pred,
+                                merit_noise: self.merit_noise,
                             });
                             break None;
                         }
@@ -963,7 +995,13 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     fn judge_watched(&mut self, s: f64, rho: f64, w: Watched) -> Option<f64> {
         let rt = self.residual(true);
         let dec = self.merit_decrease_from(&w.x, &w.len, w.bend, &w.f_frozen);
-        if dec >= RHO_ACCEPT * w.pred || rt <= 0.1 * w.rn {
+        // Below the merit's round-off the residual judges the pair (see `try_step`).
+        let merit_ok = if w.pred.abs() <= w.merit_noise {
+            rt < w.rn
+        } else {
+            dec >= RHO_ACCEPT * w.pred
+        };
+        if merit_ok || rt <= 0.1 * w.rn {
             Some(rho)
         } else {
             self.undo_watched(s, w)
@@ -980,6 +1018,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         self.f_frozen = w.f_frozen;
         self.r_x = w.r_x;
         self.dx = w.dx;
+        self.merit_noise = w.merit_noise;
         match self.try_step(s, w.rn, w.step, 1, false) {
             Trial::Accept(rho) => Some(rho),
             _ => None,

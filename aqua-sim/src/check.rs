@@ -271,9 +271,11 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     // trial evaluations). Measured against `analysis.kind = "static"` runs (2026-12-05):
     // reference cage 1.3 s estimated for 1.41–1.44 s, farm 1.6 s for 1.24–1.30 s, moored cage
     // 0.3 s for 0.20 s, buoy mooring 20 ms for 10 ms, mooring chain 5.4 ms for 4–5 ms.
-    // Lines alone (no net panels, nothing floating) start from their stretched touchdown
+    // Lines alone (no net, as panels or twines; nothing floating) start from their stretched touchdown
     // shape and take 12–15 iterations at 80–1280 segments (2026-12-05).
-    let lines_only = el.panels.is_empty() && built.design.floaters.is_empty();
+    let lines_only = el.panels.is_empty()
+        && !el.lines.iter().any(|l| l.net_twine)
+        && built.design.floaters.is_empty();
     let static_iterations = if free == 0 {
         1.0
     } else if lines_only {

@@ -249,3 +249,26 @@ fn the_surged_chain_takes_one_update_and_one_check_per_step() {
         );
     }
 }
+
+/// The bundled chain shortened to 100 m, so that it hangs taut on its 109.7 m span, with
+/// EA = 1e14 N (a pretension of about 1e13 N): its supports carry its submerged weight,
+/// 100 m × (113 kg/m − ρ_w·π/4·d_v²)·g (ρ_w = 1025 kg/m³, g = 9.80665 m/s²). The strain energies are then so large that their
+/// round-off (ε_mach·T·|x| per element) exceeds a converging step's predicted decrease; the
+/// merit cannot judge the last steps and the residual must (docs/theory/fem.md#static-solver),
+/// else the solve ends in "no step lowers the energy" although the line has an equilibrium.
+#[test]
+fn a_taut_very_stiff_chain_carries_its_weight() {
+    let dir = scratch("chain-taut-stiff");
+    let text = example("mooring-chain.toml")
+        .replace("kind = \"static+dynamic\"", "kind = \"static\"")
+        .replace("length = 120.0", "length = 100.0")
+        .replace("ea = 5.4e8", "ea = 1e14");
+    let row = &summary(&run_text(&dir, "taut", &text))[0];
+    let d_v: f64 = 0.1354;
+    let weight = 100.0 * (113.0 - 1025.0 * std::f64::consts::FRAC_PI_4 * d_v * d_v) * 9.80665;
+    assert!(
+        (row["Rz"] - weight).abs() <= 2e-3 * weight,
+        "supports carry {} N of {weight} N",
+        row["Rz"]
+    );
+}
