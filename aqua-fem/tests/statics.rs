@@ -683,6 +683,23 @@ fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
     );
 }
 
+/// The line of `a_taut_stiff_line_carries_its_weight_at_any_axial_stiffness`: 100 m, 1 kN/m,
+/// 40 elements, between fixed ends 110 m apart, axial stiffness `ea` [N]. Returns the static
+/// solution and the two end nodes.
+fn taut_line(ea: f64) -> (StaticSolution, [usize; 2]) {
+    let n = 40;
+    let mut b = ModelBuilder::new(env_air());
+    let g = b
+        .add_group("chain", CableSection::new(ea, 1000.0 / DEFAULT_GRAVITY))
+        .unwrap();
+    let nodes = add_line(&mut b, [0.0; 3], [110.0, 0.0, 0.0], n, 100.0, g, 0.0);
+    b.fix(nodes[0], Dofs::ALL).unwrap();
+    b.fix(nodes[n], Dofs::ALL).unwrap();
+    let m = b.build().unwrap();
+    let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    (sol, [nodes[0], nodes[n]])
+}
+
 /// A chain stretched straight between two fixed ends 10 % further apart than its length,
 /// with EA from 1e8 to 1e12 N: its supports carry exactly its weight (vertical equilibrium of
 /// the whole line) and balance each other horizontally, at the default tolerance. The
@@ -691,24 +708,12 @@ fn a_part_fixed_in_y_only_drifts_along_x_not_along_y() {
 /// iteration with a quarter of the weight carried (docs/theory/fem.md#static-solver).
 #[test]
 fn a_taut_stiff_line_carries_its_weight_at_any_axial_stiffness() {
-    let (n, w) = (40, 1000.0);
+    let weight = 100.0 * 1000.0;
     // At 1e12 the residual's round-off floor (ε_mach·EA·(|x| + L0)/L0 per element, 0.3 N
     // here) lets the supports' sum be off by some 1e-5 of the weight.
     for (ea, rel) in [(1e8, 1e-6), (1e10, 1e-6), (1e12, 1e-5)] {
-        let mut b = ModelBuilder::new(env_air());
-        let g = b
-            .add_group("chain", CableSection::new(ea, w / DEFAULT_GRAVITY))
-            .unwrap();
-        let nodes = add_line(&mut b, [0.0; 3], [110.0, 0.0, 0.0], n, 100.0, g, 0.0);
-        b.fix(nodes[0], Dofs::ALL).unwrap();
-        b.fix(nodes[n], Dofs::ALL).unwrap();
-        let m = b.build().unwrap();
-        let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
-        let (ra, rb) = (
-            sol.outputs.reaction[nodes[0]],
-            sol.outputs.reaction[nodes[n]],
-        );
-        let weight = w * 100.0;
+        let (sol, [a, b]) = taut_line(ea);
+        let (ra, rb) = (sol.outputs.reaction[a], sol.outputs.reaction[b]);
         assert!(
             (ra[2] + rb[2] - weight).abs() <= rel * weight,
             "EA {ea:e}: supports carry {} N of {weight} N",
@@ -731,15 +736,7 @@ fn a_taut_stiff_line_carries_its_weight_at_any_axial_stiffness() {
     }
     // At EA = 1e16 the tensions' round-off (ε_mach·EA·(|x| + L0)/L0 per element) is a few
     // per cent of the weight: the solve says so instead of reporting the forces as exact.
-    let mut b = ModelBuilder::new(env_air());
-    let g = b
-        .add_group("chain", CableSection::new(1e16, w / DEFAULT_GRAVITY))
-        .unwrap();
-    let nodes = add_line(&mut b, [0.0; 3], [110.0, 0.0, 0.0], n, 100.0, g, 0.0);
-    b.fix(nodes[0], Dofs::ALL).unwrap();
-    b.fix(nodes[n], Dofs::ALL).unwrap();
-    let m = b.build().unwrap();
-    let sol = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    let (sol, _) = taut_line(1e16);
     assert!(
         sol.report
             .warnings
