@@ -35,9 +35,12 @@
 //! **Statics** ([`solve_static`]): q(x, 0, t0) = 0 by Levenberg–Marquardt Newton steps
 //! (J + μD)Δx = −r, D = Σ EA/L0 per node, accepted and μ adapted on the energy merit
 //! Π = Σ W_e + seabed energy − f_frozen·x (backtracking on it before μ rises), μ → 0 near the
-//! solution; load continuation only when the full load fails; converged when ‖r‖₂ ≤ ε_r·F_ref and
-//! ‖Δx‖∞ ≤ 1e-6·L_ref, or when ‖r‖₂ is at its round-off floor F_noise. Progress and stopping
-//! through [`solve_static_observed`].
+//! solution (steps too small for the merit's round-off are judged by ‖r‖); load continuation
+//! only when the full load fails; converged when ‖r‖₂ ≤ ε_r·F_ref, F_ref = max(‖f_ext‖₂, floor)
+//! (the loads, never the reactions, which may hold a pretension), and ‖Δx‖∞ ≤ 1e-6·L_ref, or
+//! when ‖r‖₂ is at its round-off floor F_noise. Parts held by nothing, drifting sideways or
+//! heavier than their full buoyancy are refused before solving. Progress and stopping through
+//! [`solve_static_observed`].
 //!
 //! **Dynamics** ([`DynamicSolver`], HHT-α, α ∈ [0, 1/3], β = (1 + α)²/4, γ = ½ + α):
 //!

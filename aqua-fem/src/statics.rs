@@ -234,7 +234,8 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     f_floor: f64,
     /// Round-off level of ‖r‖₂ at the current iterate [N] (see `noise_floor`).
     f_noise: f64,
-    /// Round-off level of the merit's change from the iterate [J]: 8·ε_mach·Σ W_e there.
+    /// Round-off level of the merit's change from the iterate [J] (`merit_round_off`); below
+    /// it the residual judges a step instead of the merit.
     merit_noise: f64,
     noise_buf: Vec<f64>,
     l_ref: f64,
