@@ -717,6 +717,8 @@ fn interrupt_during_statics_keeps_the_best_state_as_step_0() {
         serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
     assert_eq!(json["status"], "interrupted");
     assert_eq!(json["output_steps"].as_u64(), Some(1));
+    // The full load at once: the iterate is one of the full current.
+    assert_eq!(json["static_load_factor"].as_f64(), Some(1.0));
     let hist = json["static_residual_history"].as_array().unwrap();
     assert!(!hist.is_empty());
     assert!(hist.iter().all(|v| v.as_f64().is_some_and(f64::is_finite)));

@@ -110,6 +110,9 @@ pub struct StaticReport {
     pub residual_history: Vec<f64>,
     /// The observer stopped the solve: the state is the last accepted one, not an equilibrium.
     pub interrupted: bool,
+    /// Load factor s of the returned state (1 = full load; below 1 only when the solve was
+    /// interrupted during load continuation).
+    pub load_factor: f64,
     /// Warnings (logged by the caller).
     pub warnings: Vec<String>,
 }
@@ -564,6 +567,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     report.backtracked_steps = ctx.backtracked_steps;
     report.residual_history = std::mem::take(&mut ctx.history);
     report.f_ref = ctx.f_ref;
+    report.load_factor = s_out;
     report.relative_residual = rn / ctx.f_ref;
     report.noise_level = ctx.f_noise / ctx.f_ref;
     if !report.interrupted {

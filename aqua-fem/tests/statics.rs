@@ -509,6 +509,45 @@ fn discrete_catenary_to_round_off_for_any_axial_stiffness() {
     }
 }
 
+/// Stopped by its observer, the static solve returns its last accepted iterate (moved from the
+/// as-built chain, not converged) and the load factor that iterate was solved for: the full
+/// load when it is applied at once, the first increment's with `load_steps = 4`.
+#[test]
+fn an_interrupted_static_solve_says_at_which_load_factor_it_stopped() {
+    let (m, nodes) = catenary_model(20, 1e6, 30.0, 120.0, 15.0);
+    for (load_steps, stop_at, want) in [(1, 5, 1.0), (4, 1, 0.25)] {
+        let st = StaticSettings {
+            load_steps,
+            ..Default::default()
+        };
+        let mut seen = None;
+        let mut observer = |p: &StaticProgress| {
+            if p.iteration >= stop_at {
+                seen = Some(p.load_factor);
+                StaticControl::Stop
+            } else {
+                StaticControl::Continue
+            }
+        };
+        let sol = solve_static_observed(&m, &mut NoLoads, &st, &mut observer).unwrap();
+        assert!(sol.report.interrupted, "load_steps = {load_steps}");
+        assert_eq!(seen, Some(want));
+        assert_eq!(sol.report.load_factor, want, "load_steps = {load_steps}");
+        assert!(sol.report.relative_residual > st.tol);
+        let moved = nodes
+            .iter()
+            .map(|&i| (sol.state.x[i][2] - m.nodes()[i][2]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            moved > 1e-6,
+            "load_steps = {load_steps}: the as-built chain"
+        );
+    }
+    let done = solve_static(&m, &mut NoLoads, &StaticSettings::default()).unwrap();
+    assert!(!done.report.interrupted);
+    assert_eq!(done.report.load_factor, 1.0);
+}
+
 /// A sideways push that switches with the accepted geometry, as a wake's membership does
 /// (docs/theory/fem.md#static-solver): F0 while the bob hangs at x ≤ x_s, F1 once an accepted
 /// state has it beyond. The provider changes it only in `accept_state`, never inside Newton.

@@ -58,6 +58,9 @@ pub struct RunRecord {
     pub static_iterations: usize,
     /// ‖r‖/F_ref of every static Newton iterate.
     pub static_residuals: Vec<f64>,
+    /// Load factor of the static state written (1 = full load; below 1 only when the solve
+    /// was interrupted during load continuation); `None` without a static solve.
+    pub static_load_factor: Option<f64>,
     /// How it ended.
     pub ending: Ending,
     /// Output frames delivered.
@@ -204,6 +207,7 @@ impl<'p> Simulation<'p> {
             }
             record.static_iterations = stat.report.iterations;
             record.static_residuals = stat.report.residual_history.clone();
+            record.static_load_factor = Some(stat.report.load_factor);
             self.frame(
                 obs,
                 record,

@@ -187,8 +187,14 @@ pub fn run_scene(
             Ok(Ending::Completed)
         }
         Ending::Interrupted => {
+            let partial = match record.static_load_factor {
+                Some(s) if s < 1.0 && record.steps == 0 => {
+                    format!(" (the static state at load factor {s:.4}, not the full load)")
+                }
+                _ => String::new(),
+            };
             eprintln!(
-                "interrupted at t = {} s: {} output steps kept in {}",
+                "interrupted at t = {} s{partial}: {} output steps kept in {}",
                 record.last.as_ref().map(|r| r.t).unwrap_or(0.0),
                 files.steps_written(),
                 files.pvd_path().display()
@@ -243,6 +249,7 @@ fn run_json(
         "newton_iterations": record.iterations,
         "static_newton_iterations": record.static_iterations,
         "static_residual_history": &record.static_residuals,
+        "static_load_factor": record.static_load_factor,
         "step_control": &record.step_control,
         "energies": &record.energies,
         "linear_solver": &record.linear_solver,
