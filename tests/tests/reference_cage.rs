@@ -106,8 +106,8 @@ fn static_history(out: &std::path::Path) -> (u64, Vec<f64>) {
 
 #[test]
 fn static_solve_of_the_cage_is_newton_not_relaxation() {
-    // docs/theory/fem.md#static-solver: 60 iterations at 10 m elements and 74 at 5 m with the
-    // watchdog, 72 and 86 without it (at 10 m the pseudo-transient solver it replaced needed
+    // docs/theory/fem.md#static-solver: 55 iterations at 10 m elements and 66 at 5 m with the
+    // watchdog (60 and 74 before the loads followed the iterate), 67 and 78 without it (72 and 86) (at 10 m the pseudo-transient solver it replaced needed
     // 138, the first one 813). Bounds with margin, so a regression to a relaxation fails.
     let dir = scratch("refcage-newton");
     let mut totals = [0, 0];
@@ -122,13 +122,17 @@ fn static_solve_of_the_cage_is_newton_not_relaxation() {
             assert!(iters <= bound, "{name}: {iters} iterations");
             // Newton's superlinear convergence at the end: some iterate below 1e-2·F_ref whose
             // successor has at least 1.4 times as many correct digits (a relaxation gains a
-            // fixed number of digits per iteration: from 1e-5 at 0.1 per step, 1.2 times). Not
+            // fixed number of digits per iteration: from 1e-5 at 0.1 per step, 1.2 times), or
+            // one below 0.1·F_ref whose successor is 1000 times smaller (no relaxation gains
+            // three digits in one iteration; the solve may end right after such a step). Not
             // 2: near this net's equilibrium many twines sit at their slack point, and a member
             // that crosses it between iterates is a kink that Newton's order does not survive
             // (docs/theory/fem.md#static-solver).
-            let superlinear = h
-                .windows(2)
-                .any(|w| w[0] < 1e-2 && w[1] > 1e-13 && w[1].ln() / w[0].ln() >= 1.4);
+            let superlinear = h.windows(2).any(|w| {
+                w[1] > 1e-13
+                    && ((w[0] < 1e-2 && w[1].ln() / w[0].ln() >= 1.4)
+                        || (w[0] < 0.1 && w[1] <= 1e-3 * w[0]))
+            });
             assert!(superlinear, "{name}: no superlinear step in {h:?}");
             assert!(*h.last().unwrap() <= 1e-6, "{h:?}");
         }
