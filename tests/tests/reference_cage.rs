@@ -107,8 +107,9 @@ fn static_history(out: &std::path::Path) -> (u64, Vec<f64>) {
 #[test]
 fn static_solve_of_the_cage_is_newton_not_relaxation() {
     // docs/theory/fem.md#static-solver: 55 iterations at 10 m elements and 66 at 5 m with the
-    // watchdog (60 and 74 before the loads followed the iterate), 67 and 78 without it (72 and 86) (at 10 m the pseudo-transient solver it replaced needed
-    // 138, the first one 813). Bounds with margin, so a regression to a relaxation fails.
+    // watchdog (60 and 74 before the loads followed the iterate), 67 and 78 without it (72 and
+    // 86); at 10 m the pseudo-transient solver it replaced needed 138, the first one 813.
+    // Bounds with margin, so a regression to a relaxation fails.
     let dir = scratch("refcage-newton");
     let mut totals = [0, 0];
     for (el, bound) in [(10.0, 80), (5.0, 100)] {
