@@ -42,9 +42,9 @@
 //! heavier than their full buoyancy are refused before solving. Progress and stopping through
 //! [`solve_static_observed`]. Why the iteration count grows with the mesh (a straight step
 //! that turns a stiff member over-stretches it, and the cone's shortest members turn most) and
-//! why a mixed (position and tension) Newton, 6 iterations on a catenary at any EA, does not yet
-//! help nets (its residual merit cannot see a slack node's fall): docs/theory/fem.md#newton-region,
-//! #short-members and #mixed-statics.
+//! why a mixed (position and tension) Newton, at most 6 iterations on a catenary at any EA,
+//! does not yet help nets (its residual merit cannot see a slack node's fall):
+//! docs/theory/fem.md#newton-region, #short-members and #mixed-statics.
 //!
 //! **Dynamics** ([`DynamicSolver`], HHT-α, α ∈ [0, 1/3], β = (1 + α)²/4, γ = ½ + α):
 //!

@@ -87,7 +87,7 @@ impl StaticSettings {
 /// What the static solve did.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct StaticReport {
-    /// Accepted load increments.
+    /// Accepted load increments, the re-solves after a wake change included.
     pub increments: usize,
     /// Rejected (halved) increments.
     pub rejected_increments: usize,
@@ -156,6 +156,8 @@ struct NewtonFail {
     history: Vec<f64>,
     /// The observer asked to stop (not a failure of the method).
     stopped: bool,
+    /// An error that no smaller load increment can mend (the load provider's), returned as is.
+    fatal: Option<Box<FemError>>,
 }
 
 /// Smallest and largest Levenberg–Marquardt damping μ.
@@ -519,7 +521,9 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         ctx.x.copy_from_slice(&x_acc);
         apply_constraints(model, t, s, &mut ctx.x);
         ctx.progress.load_factor = s;
-        match ctx.levenberg_marquardt(s, &mut mu) {
+        // The loads follow the iterate only in the first full-load solve: a wake pass starts
+        // from an equilibrium they have just seen.
+        match ctx.levenberg_marquardt(s, &mut mu, s >= 1.0 && wake_passes == 0) {
             Ok((iters, hist)) => {
                 report.last_residual_history = hist;
                 report.increments += 1;
@@ -533,7 +537,8 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                     if wake_passes == MAX_WAKE_PASSES {
                         report.warnings.push(format!(
                             "the wake still changed after {MAX_WAKE_PASSES} re-solves at full \
-                             load; the equilibrium is that of the wake before the last change"
+                             load; the state is the equilibrium of the wake before the last \
+                             change, and its forces and outputs are evaluated with the last one"
                         ));
                         break;
                     }
@@ -544,6 +549,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                     ds = (2.0 * ds).min(1.0 - s_acc);
                 }
             }
+            Err(NewtonFail { fatal: Some(e), .. }) => return Err(*e),
             Err(f) if f.stopped => {
                 // The last accepted iterate of this increment (not the last converged
                 // increment: with the full load at once that would be the start).
@@ -766,6 +772,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 reason: "interrupted".into(),
                 history: hist.clone(),
                 stopped: true,
+                fatal: None,
             });
         }
         Ok(())
@@ -869,16 +876,19 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     /// μ follows Nielsen's rule (μ·max(⅓, 1 − (2ρ − 1)³) after success, ×ν, ν doubling, after
     /// a rejection), so μ → 0 and the steps become Newton's near the solution. Returns
     /// (iterations, ‖r‖/F_ref history).
+    /// With `follow`, the loads see the iterate once on the way (`follow_loads`).
     fn levenberg_marquardt(
         &mut self,
         s: f64,
         mu: &mut f64,
+        follow: bool,
     ) -> std::result::Result<(usize, Vec<f64>), NewtonFail> {
         let mut hist = Vec::new();
         let fail = |reason: String, hist: &Vec<f64>| NewtonFail {
             reason,
             history: hist.clone(),
             stopped: false,
+            fatal: None,
         };
         if let Err(e) = self.eval(s, false, true) {
             return Err(fail(e.to_string(), &hist));
@@ -890,7 +900,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         let mut watched: Option<Watched> = None;
         let mut watch_ok = self.st.watchdog;
         // The loads' discontinuous data follow the iterate once, near the equilibrium.
-        let mut followed = s < 1.0;
+        let mut followed = !follow;
         loop {
             if let Err(stop) = self.observe(rn, *mu, &mut hist) {
                 // A watched step is on trial, not accepted: stop at the iterate it left.
@@ -908,12 +918,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             }
             if !followed && watched.is_none() && rn <= FOLLOW_LOADS_RESIDUAL * self.f_ref {
                 followed = true;
-                let changed = crate::loads::accept_state(&mut *self.prov, self.st.time, &self.x)
-                    .map_err(|e| fail(e.to_string(), &hist))?;
-                if changed {
-                    if let Err(e) = self.eval(s, false, true) {
-                        return Err(fail(e.to_string(), &hist));
-                    }
+                if self.follow_loads(s, &hist)? {
                     rn = self.residual(false);
                     dx_last = f64::INFINITY;
                     continue;
@@ -1012,6 +1017,24 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             }
             rn = self.residual(false);
         }
+    }
+
+    /// Hands the iterate to the loads (`LoadProvider::accept_state`) before convergence, so
+    /// that their discontinuous data (wake membership) are those of a shape near the
+    /// equilibrium (docs/theory/fem.md#static-solver). Returns whether they changed; the
+    /// forces and tangent at the iterate are then evaluated anew.
+    fn follow_loads(&mut self, s: f64, hist: &[f64]) -> std::result::Result<bool, NewtonFail> {
+        let fatal = |e: FemError| NewtonFail {
+            reason: e.to_string(),
+            history: hist.to_vec(),
+            stopped: false,
+            fatal: Some(Box::new(e)),
+        };
+        if !crate::loads::accept_state(&mut *self.prov, self.st.time, &self.x).map_err(fatal)? {
+            return Ok(false);
+        }
+        self.eval(s, false, true).map_err(fatal)?;
+        Ok(true)
     }
 
     /// The step after a watched one was accepted at `self.x_trial`: keeps both if together

@@ -68,7 +68,8 @@ impl FromStr for WakeModelId {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum WakeUpdate {
-    /// At the start of every time step and at the static equilibrium (re-solved while it changes).
+    /// At the start of every time step, and in statics near and at the equilibrium (re-solved
+    /// while it changes; docs/theory/fem.md#static-solver).
     #[default]
     Step,
     /// Once, from the initial geometry.
