@@ -92,11 +92,12 @@ pub trait LoadProvider: Sync {
         Ok(())
     }
     /// Called with an accepted state: before each time step, when a static solve has
-    /// converged, and once during the first full-load static solve, at the first iterate with
-    /// ‖r‖ ≤ 0.1·F_ref (the solve then goes on with the changed loads). The place for load data
-    /// that must stay fixed between these calls because it changes discontinuously with the
-    /// geometry (which elements lie in a wake). Returns true if the loads changed; a converged
-    /// static solve is then repeated from its equilibrium (docs/theory/fem.md#static-solver).
+    /// converged, and once in each full-load static solve before the first wake re-solve, at
+    /// the first iterate with ‖r‖ ≤ 0.1·F_ref (the solve then goes on with the changed loads).
+    /// The place for load data that must stay fixed between these calls because it changes
+    /// discontinuously with the geometry (which elements lie in a wake). Returns true if the
+    /// loads changed; a converged static solve is then repeated from its equilibrium
+    /// (docs/theory/fem.md#static-solver).
     fn accept_state(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, LoadError> {
         let _ = (t, x);
         Ok(false)

@@ -521,8 +521,8 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         ctx.x.copy_from_slice(&x_acc);
         apply_constraints(model, t, s, &mut ctx.x);
         ctx.progress.load_factor = s;
-        // The loads follow the iterate only in the first full-load solve: a wake pass starts
-        // from an equilibrium they have just seen.
+        // The loads follow the iterate in full-load solves before the first wake pass: a wake
+        // pass starts from an equilibrium they have just seen.
         match ctx.levenberg_marquardt(s, &mut mu, s >= 1.0 && wake_passes == 0) {
             Ok((iters, hist)) => {
                 report.last_residual_history = hist;

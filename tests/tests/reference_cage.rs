@@ -121,8 +121,8 @@ fn static_solve_of_the_cage_is_newton_not_relaxation() {
             let (iters, h) = static_history(&run_text(&dir, &name, &text));
             totals[w] += iters;
             assert!(iters <= bound, "{name}: {iters} iterations");
-            // Newton's superlinear convergence at the end: three iterates below 0.1·F_ref whose
-            // last step contracts by at least 100 and at least 10 times more than the step
+            // Newton's superlinear convergence at the end: from an iterate below 0.1·F_ref, a step
+            // that contracts ‖r‖ by at least 100 and at least 10 times more than the step
             // before. A relaxation contracts by about the same factor every iteration, so it
             // fails this whatever its rate. Not quadratic order either: near this net's
             // equilibrium many twines sit at their slack point, and a member that crosses it
