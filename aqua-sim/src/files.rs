@@ -7,10 +7,9 @@
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
 //! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
-//! for what holds when the process stops). `summary.csv` rows are buffered and flushed at
-//! most [`CSV_FLUSH_INTERVAL`] of wall time after they were written (also while no further
-//! step arrives) and by [`RunFiles::flush`] (which the end of a run, an interruption or a
-//! failure calls, and dropping [`RunFiles`] does too).
+//! for what holds when the process stops). A step's `summary.csv` row is written and flushed
+//! before its `.pvd` line, so whatever stops the process — even SIGKILL — `summary.csv` holds
+//! a row for every step the `.pvd` lists (one short write per output step).
 //!
 //! **The files are written by a background thread** (docs/theory/fem.md#outputs): the run
 //! loop checks a step's arrays for non-finite values, copies them and hands them over, and
@@ -38,15 +37,12 @@ use aqua_mesh::{BlockArray, Mesh, MultiblockSeries, NameTables, StepArrays};
 use nalgebra::Point3;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::{Receiver, RecvTimeoutError, SyncSender};
+use std::sync::mpsc::{Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
 /// The pvpython script written next to every run (`DIR/open_in_paraview.py`).
 pub const PARAVIEW_SCRIPT: &str = include_str!("open_in_paraview.py");
-
-/// Longest wall time a `summary.csv` row stays in memory while a run goes on.
-pub const CSV_FLUSH_INTERVAL: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// Output steps that may wait for the writer thread (each holds a copy of one step's arrays).
 pub const QUEUE_STEPS: usize = 2;
@@ -98,35 +94,13 @@ struct Disk {
     mesh: Arc<Mesh>,
     csv: std::io::BufWriter<std::fs::File>,
     csv_path: PathBuf,
-    /// When `summary.csv` was last flushed.
-    csv_flushed: std::time::Instant,
-    /// Rows written since.
-    csv_dirty: bool,
 }
 
 impl Disk {
     /// Writes jobs in order until the channel closes; after an error, only answers syncs.
-    /// Rows of `summary.csv` still buffered [`CSV_FLUSH_INTERVAL`] after they were written
-    /// are flushed even when no further step arrives.
     fn serve(mut self, rx: Receiver<Job>, shared: Arc<Mutex<Written>>) {
         let mut failed = false;
-        loop {
-            let job = if self.csv_dirty {
-                let wait = CSV_FLUSH_INTERVAL.saturating_sub(self.csv_flushed.elapsed());
-                match rx.recv_timeout(wait) {
-                    Ok(job) => job,
-                    Err(RecvTimeoutError::Timeout) => {
-                        self.flush_csv_into(&shared);
-                        continue;
-                    }
-                    Err(RecvTimeoutError::Disconnected) => break,
-                }
-            } else {
-                match rx.recv() {
-                    Ok(job) => job,
-                    Err(_) => break,
-                }
-            };
+        while let Ok(job) = rx.recv() {
             match job {
                 Job::Step(step) if !failed => {
                     let r = self.write(&step);
@@ -141,38 +115,21 @@ impl Disk {
                 }
                 Job::Step(_) => {}
                 Job::Sync(done) => {
-                    self.flush_csv_into(&shared);
                     let _ = done.send(());
                 }
             }
         }
-        self.flush_csv_into(&shared);
     }
 
-    /// Flushes `summary.csv`, keeping the first error for the run loop.
-    fn flush_csv_into(&mut self, shared: &Mutex<Written>) {
-        if let Err(e) = self.flush_csv() {
-            let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
-            w.error.get_or_insert(e);
-        }
-    }
-
+    /// The step's `summary.csv` row (flushed), then its blocks, `.vtm` and `.pvd` line.
     fn write(&mut self, step: &StepJob) -> Result<()> {
+        writeln!(self.csv, "{}", step.csv_line)
+            .and_then(|_| self.csv.flush())
+            .map_err(io("writing", &self.csv_path))?;
         self.series
             .write_step(step.t, &self.mesh, &step.positions, &step.arrays)
             .map_err(|e| SimError::Output(Box::new(e)))?;
-        writeln!(self.csv, "{}", step.csv_line).map_err(io("writing", &self.csv_path))?;
-        self.csv_dirty = true;
-        if self.csv_flushed.elapsed() >= CSV_FLUSH_INTERVAL {
-            self.flush_csv()?;
-        }
         Ok(())
-    }
-
-    fn flush_csv(&mut self) -> Result<()> {
-        self.csv_flushed = std::time::Instant::now();
-        self.csv_dirty = false;
-        self.csv.flush().map_err(io("writing", &self.csv_path))
     }
 }
 
@@ -219,8 +176,6 @@ impl RunFiles {
             mesh: Arc::new(built.mesh.clone()),
             csv,
             csv_path: path,
-            csv_flushed: std::time::Instant::now(),
-            csv_dirty: false,
         };
         let shared = Arc::new(Mutex::new(Written::default()));
         let (tx, rx) = std::sync::mpsc::sync_channel(QUEUE_STEPS);
@@ -584,23 +539,42 @@ mod tests {
     }
 
     #[test]
-    fn summary_rows_reach_the_file_without_a_flush_or_a_further_step() {
+    fn summary_rows_reach_the_file_before_their_step_reaches_the_pvd() {
         let (prep, frames) = frames();
         let dir = scratch("csv");
         let mut files = RunFiles::create(&dir, "chain", &prep.built).unwrap();
-        for (s, o, w, r) in &frames {
-            files.write_step(&prep.built, s, o, w, r).unwrap();
-        }
+        let pvd = files.pvd_path();
         let rows = || {
             std::fs::read_to_string(dir.join("summary.csv"))
                 .unwrap()
                 .lines()
                 .count()
         };
-        // Waits (up to 10 flush intervals) for the time-based flush; nothing else writes.
+        let listed = || {
+            std::fs::read_to_string(&pvd)
+                .map(|t| t.matches("<DataSet").count())
+                .unwrap_or(0)
+        };
+        // Without a flush, wherever the writer thread is: every step the .pvd lists already
+        // has its row on disk (what a SIGKILL would leave).
+        let rows_cover_the_pvd = || {
+            let (l, n) = (listed(), rows());
+            assert!(
+                n > l,
+                "{l} steps listed in the .pvd but {} summary rows",
+                n - 1
+            );
+            l
+        };
+        for (s, o, w, r) in &frames {
+            files.write_step(&prep.built, s, o, w, r).unwrap();
+            rows_cover_the_pvd();
+        }
         let start = std::time::Instant::now();
-        while rows() < frames.len() + 1 && start.elapsed() < 10 * CSV_FLUSH_INTERVAL {
-            std::thread::sleep(CSV_FLUSH_INTERVAL / 10);
+        while rows_cover_the_pvd() < frames.len()
+            && start.elapsed() < std::time::Duration::from_secs(10)
+        {
+            std::thread::sleep(std::time::Duration::from_millis(1));
         }
         assert_eq!(rows(), frames.len() + 1, "header and one row per step");
         files.flush().unwrap();
