@@ -6,19 +6,31 @@
 
 pub mod commands;
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicI32, Ordering};
 
-/// Set by the Ctrl-C handler; long runs poll it between steps and stop cleanly.
-static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+/// The first stop signal received (SIGINT, SIGTERM or SIGHUP), 0 while none; long runs poll
+/// it between steps and stop cleanly.
+static STOP_SIGNAL: AtomicI32 = AtomicI32::new(0);
 
-/// Ask running solves to stop after the current step (called from the Ctrl-C handler).
-pub fn request_stop() {
-    INTERRUPTED.store(true, Ordering::SeqCst);
+/// Ask running solves to stop after the current step (called from the signal thread with the
+/// signal's number; the first signal is the one the exit code reports).
+pub fn request_stop(signal: i32) {
+    let _ = STOP_SIGNAL.compare_exchange(0, signal.max(1), Ordering::SeqCst, Ordering::SeqCst);
 }
 
 /// True once a stop was requested.
 pub fn interrupted() -> bool {
-    INTERRUPTED.load(Ordering::SeqCst)
+    STOP_SIGNAL.load(Ordering::SeqCst) != 0
+}
+
+/// The exit status of a run stopped by a signal: 128 + the signal's number, as a shell
+/// reports a process killed by it (130 for Ctrl-C's SIGINT, 143 for the SIGTERM that Slurm
+/// and `kill` send); 130 when no signal is recorded.
+pub fn interrupted_exit_code() -> i32 {
+    match STOP_SIGNAL.load(Ordering::SeqCst) {
+        0 => 130,
+        s => 128 + s,
+    }
 }
 
 use std::fmt;

@@ -56,13 +56,30 @@ fn quiet_on_broken_pipe() {
     }));
 }
 
+/// A thread that turns SIGINT, SIGTERM and SIGHUP into a stop request.
+fn stop_on_signals() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::Builder::new()
+        .name("aqua-signals".into())
+        .spawn(move || {
+            for signal in signals.forever() {
+                aqua_cli::request_stop(signal);
+            }
+        })?;
+    Ok(())
+}
+
 fn main() -> ExitCode {
     quiet_on_broken_pipe();
     let cli = Cli::parse();
-    // Ctrl-C asks the run to stop after the current step; its outputs stay consistent.
-    if ctrlc::set_handler(aqua_cli::request_stop).is_err() {
+    // Ctrl-C (SIGINT), SIGTERM (what `kill` and Slurm's time limit send) and SIGHUP ask the
+    // run to stop after the current step; its outputs stay consistent and run.json says
+    // `interrupted`.
+    if let Err(e) = stop_on_signals() {
         eprintln!(
-            "warning: cannot install the Ctrl-C handler; an interrupted run may leave a partial step"
+            "warning: cannot install the signal handler ({e}); an interrupted run may leave a \
+             partial step"
         );
     }
     let result = match cli.command {

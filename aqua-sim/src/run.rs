@@ -61,6 +61,11 @@ pub struct RunRecord {
     /// Load factor of the static state written (1 = full load; below 1 only when the solve
     /// was interrupted during load continuation); `None` without a static solve.
     pub static_load_factor: Option<f64>,
+    /// Whether the static state written is a converged equilibrium (false when the solve was
+    /// interrupted: step 0 is then the last accepted iterate); `None` without a static solve.
+    pub static_converged: Option<bool>,
+    /// ‖r‖/F_ref of the static state written; `None` without a static solve.
+    pub static_relative_residual: Option<f64>,
     /// How it ended.
     pub ending: Ending,
     /// Output frames delivered.
@@ -208,6 +213,8 @@ impl<'p> Simulation<'p> {
             record.static_iterations = stat.report.iterations;
             record.static_residuals = stat.report.residual_history.clone();
             record.static_load_factor = Some(stat.report.load_factor);
+            record.static_converged = Some(!stat.report.interrupted);
+            record.static_relative_residual = Some(stat.report.relative_residual);
             self.frame(
                 obs,
                 record,

@@ -3,9 +3,9 @@
 //! undeformed `DIR/<scene>_reference.vtm`, `DIR/open_in_paraview.py`, `DIR/summary.csv` and
 //! `DIR/run.json`.
 //!
-//! Ctrl-C or a failed step stops cleanly: every step already written stays readable, the
+//! Ctrl-C, SIGTERM or a failed step stops cleanly: every step already written stays readable, the
 //! `.pvd` lists exactly those steps, `run.json` records why the run ended, and the exit code is
-//! non-zero (1 for a failed solve, 130 for an interruption).
+//! non-zero (1 for a failed solve, 128 + the signal for an interruption: 130 for Ctrl-C, 143 for SIGTERM).
 
 use crate::interrupted;
 use anyhow::Context;
@@ -115,7 +115,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         }
     }
     match ending {
-        Ending::Interrupted => std::process::exit(130),
+        Ending::Interrupted => std::process::exit(crate::interrupted_exit_code()),
         _ => Ok(()),
     }
 }
@@ -187,9 +187,18 @@ pub fn run_scene(
             Ok(Ending::Completed)
         }
         Ending::Interrupted => {
-            let partial = match record.static_load_factor {
-                Some(s) if s < 1.0 && record.steps == 0 => {
-                    format!(" (the static state at load factor {s:.4}, not the full load)")
+            let partial = match (record.static_converged, record.static_load_factor) {
+                (Some(false), Some(s)) => {
+                    let load = if s < 1.0 {
+                        format!(" at load factor {s:.4}, not the full load")
+                    } else {
+                        String::new()
+                    };
+                    format!(
+                        " (step 0 is the last static iterate{load}: NOT converged, \
+                         ||r|| = {:.2e}·F_ref; not an equilibrium)",
+                        record.static_relative_residual.unwrap_or(f64::NAN)
+                    )
                 }
                 _ => String::new(),
             };
@@ -250,6 +259,8 @@ fn run_json(
         "static_newton_iterations": record.static_iterations,
         "static_residual_history": &record.static_residuals,
         "static_load_factor": record.static_load_factor,
+        "static_converged": record.static_converged,
+        "static_relative_residual": record.static_relative_residual,
         "step_control": &record.step_control,
         "energies": &record.energies,
         "linear_solver": &record.linear_solver,

@@ -93,7 +93,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             "interrupted: {} of the runs were made; the tables hold those",
             study.runs.len()
         );
-        std::process::exit(130);
+        std::process::exit(crate::interrupted_exit_code());
     }
     Ok(())
 }

@@ -179,7 +179,7 @@ fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
     std::fs::write(&path, serde_json::to_string_pretty(&record)?)
         .with_context(|| format!("writing {}", path.display()))?;
     match result? {
-        Ending::Interrupted => std::process::exit(130),
+        Ending::Interrupted => std::process::exit(crate::interrupted_exit_code()),
         _ => Ok(()),
     }
 }
@@ -224,7 +224,7 @@ fn run_local(sweep: &Sweep, jobs: usize) -> anyhow::Result<()> {
         sweep.out.display()
     );
     if interrupted() {
-        std::process::exit(130);
+        std::process::exit(crate::interrupted_exit_code());
     }
     if failed > 0 {
         anyhow::bail!(
