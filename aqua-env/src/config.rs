@@ -6,7 +6,7 @@ use crate::airy::{Component, LinearSum};
 use crate::constants::{
     Constants, Depth, SEA_WATER_DENSITY, SEA_WATER_VISCOSITY, STANDARD_GRAVITY,
 };
-use crate::current::{Current, CurrentProfile, Schedule};
+use crate::current::{Current, CurrentProfile, MAX_CURRENT_SPEED, Schedule};
 use crate::dispersion::group_velocity;
 use crate::error::EnvError;
 use crate::irregular::{IrregularSpec, Spacing, discretise};
@@ -558,6 +558,38 @@ fn unused<T>(v: &Option<T>, key: &str, used_with: &str) -> Result<(), EnvError> 
     }
 }
 
+/// Every velocity of `[sea.current]` finite and at most [`MAX_CURRENT_SPEED`] in magnitude.
+fn current_speeds(s: &CurrentSpec) -> Result<(), EnvError> {
+    let check = |key: String, v: [f64; 3]| {
+        let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if speed <= MAX_CURRENT_SPEED {
+            Ok(())
+        } else {
+            Err(EnvError::range(
+                key,
+                format!("[{}, {}, {}] ({speed} m/s)", v[0], v[1], v[2]),
+                format!(
+                    "a current of finite speed up to {MAX_CURRENT_SPEED} m/s (the fastest tidal \
+                     streams reach about 5 m/s)"
+                ),
+            ))
+        }
+    };
+    if let Some(v) = s.velocity {
+        check("sea.current.velocity".into(), v)?;
+    }
+    if let Some(v) = s.surface_velocity {
+        check("sea.current.surface_velocity".into(), v)?;
+    }
+    for (j, p) in s.points.iter().flatten().enumerate() {
+        check(format!("sea.current.points[{j}]"), vec3(p))?;
+    }
+    for (j, p) in s.schedule.iter().flatten().enumerate() {
+        check(format!("sea.current.schedule[{j}]"), vec3(p))?;
+    }
+    Ok(())
+}
+
 fn vec3(a: &[f64; 4]) -> [f64; 3] {
     [a[1], a[2], a[3]]
 }
@@ -696,6 +728,7 @@ impl SeaSpec {
             }
         };
         profile.validate()?;
+        current_speeds(s)?;
         let schedule = match &s.schedule {
             None => None,
             Some(steps) => {

@@ -4,6 +4,10 @@
 use crate::error::EnvError;
 use crate::ramp::Ramp;
 
+/// The largest current speed a scene may give [m/s]: twice the fastest tidal streams (about
+/// 5 m/s); beyond it an input is a typing error, not a sea (docs/theory/environment.md#current).
+pub const MAX_CURRENT_SPEED: f64 = 10.0;
+
 /// The depth dependence of the current, U_c(z) [m/s], before any ramp.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CurrentProfile {

@@ -110,6 +110,9 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         .map_err(|e| SimError::at(file.clone(), e))?;
     let mesh::MeshParts { mesh, nets, farms } = mesh::build_mesh_parts(scene)?;
     let (sea, sea_summary) = build_sea(scene, &mesh)?;
+    if let Some(h) = sea.constants().depth.finite() {
+        below_seabed(&mesh, h).map_err(|m| SimError::input(format!("{file}: {m}")))?;
+    }
     let env = structure::environment(scene, sea.constants());
     let mut st = structure::build_structure(scene, &mesh, env, prescribed)?;
     add_buoys(&file, &farms, &mut st)?;
@@ -362,6 +365,34 @@ fn node_path(elements: &[&LineElement], anchor: usize, fairlead: usize) -> Vec<u
     } else {
         Vec::new()
     }
+}
+
+/// How far below the seabed z = −h an as-built node may lie (round-off of a builder's
+/// anchor or laid chain) [m]: 1e-3·h.
+const BELOW_SEABED_TOLERANCE: f64 = 1e-3;
+
+/// An error naming the object whose as-built geometry lies below the seabed z = −h [m] by
+/// more than [`BELOW_SEABED_TOLERANCE`]·h (the penalty bed would throw it up, or a cage was
+/// made deeper than the sea).
+fn below_seabed(mesh: &Mesh, h: f64) -> std::result::Result<(), String> {
+    let tol = BELOW_SEABED_TOLERANCE * h;
+    let lowest = (0..mesh.nodes.len())
+        .filter(|&n| mesh.nodes[n].z < -h - tol)
+        .min_by(|&a, &b| mesh.nodes[a].z.total_cmp(&mesh.nodes[b].z));
+    let Some(n) = lowest else { return Ok(()) };
+    let object = mesh
+        .node_owner
+        .get(n)
+        .and_then(|&(o, _)| mesh.objects.get(o as usize))
+        .map(|o| o.name.as_str())
+        .unwrap_or("?");
+    let count = mesh.nodes.iter().filter(|p| p.z < -h - tol).count();
+    Err(format!(
+        "'{object}' reaches below the seabed as built: its lowest node is at z = {:.3} m, the \
+         seabed at z = {:.3} m (sea.depth = {h}); {count} node(s) lie below it. Make the \
+         structure shallower (a cage's depth and cone, a line's anchor) or the sea deeper",
+        mesh.nodes[n].z, -h
+    ))
 }
 
 /// Anchor and fairlead nodes and end elements of every `[[line]]` object.
