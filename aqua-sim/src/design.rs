@@ -10,6 +10,13 @@
 //! - `design/float-on-seabed`: a buoy or floating pipe whose lowest point touches the seabed
 //!   at static equilibrium.
 //!
+//! - `design/on-seabed`: a net (cage or panel) with nodes resting on the seabed as built or at
+//!   static equilibrium (a weight landed on the bed, which then carries it).
+//! - In dynamics ([`DynamicWatch`], checked at every accepted step): `design/sunk-float` when
+//!   a floater's top went more than its own size under the local water surface η(x, y, t),
+//!   `design/float-on-seabed` and `design/on-seabed` when a floater or a net touched the bed;
+//!   each reported once per floater or net with the worst value and its time.
+//!
 //! - `mesh/coarse-line`: a `[[line]]` (or a farm's anchor line) that sags at static equilibrium
 //!   with fewer segments than the bundled chain's segment ladder needed
 //!   (docs/theory/fem.md#mesh-resolution-warnings).
@@ -63,7 +70,13 @@ pub struct DesignChecks {
     pub seabed_z: Option<f64>,
     /// Nodes with a point body (buoys, clump weights, point masses): physical kinks of a line.
     pub kinks: Vec<usize>,
+    /// Nets (cages, panels) that should not rest on the seabed: (name, nodes).
+    pub nets: Vec<(String, Vec<usize>)>,
 }
+
+/// How far above the seabed z_b a node counts as on it [m] (the penalty contact lets a
+/// resting body sink a little into the bed).
+const ON_BED: f64 = 1e-3;
 
 /// Largest turn between consecutive segments of a line at equilibrium [°] above which the line
 /// counts as sagging (docs/theory/fem.md#mesh-resolution-warnings).
@@ -96,7 +109,38 @@ impl DesignChecks {
     /// `design/taut-line` in the as-built geometry.
     pub fn as_built(&self, nodes: &[Point3<f64>]) -> Vec<Diagnostic> {
         let x: Vec<[f64; 3]> = nodes.iter().map(|p| [p.x, p.y, p.z]).collect();
-        self.taut_lines(&x, "as built")
+        let mut d = self.taut_lines(&x, "as built");
+        d.extend(self.nets_on_bed(&x, "as built"));
+        d
+    }
+
+    /// `design/on-seabed` for each net with nodes on the seabed in `x` [m], `when` naming
+    /// the state.
+    fn nets_on_bed(&self, x: &[[f64; 3]], when: &str) -> Vec<Diagnostic> {
+        let Some(zb) = self.seabed_z else {
+            return Vec::new();
+        };
+        self.nets
+            .iter()
+            .filter_map(|(name, nodes)| {
+                let z = nodes.iter().filter_map(|&n| x.get(n)).map(|p| p[2]);
+                let on = z.clone().filter(|&z| z <= zb + ON_BED).count();
+                let lowest = z.fold(f64::INFINITY, f64::min);
+                (on > 0).then(|| {
+                    Diagnostic::warning(
+                        "design/on-seabed",
+                        name,
+                        format!(
+                            "'{name}' rests on the seabed {when}: {on} of its nodes (lowest at z \
+                             = {lowest:.3} m, seabed at z = {zb} m); the bed carries what \
+                             hangs there (sinkers, a centre weight) and the net's shape and \
+                             loads are not those of a hanging net. Make the net or its weights \
+                             shallower, or the sea deeper"
+                        ),
+                    )
+                })
+            })
+            .collect()
     }
 
     /// The float checks at a static equilibrium `x` [m]. (A line stretched taut at
@@ -106,6 +150,7 @@ impl DesignChecks {
             .iter()
             .filter_map(|f| self.floater(f, x))
             .chain(self.lines.iter().filter_map(|l| self.coarse_line(l, x)))
+            .chain(self.nets_on_bed(x, "at static equilibrium"))
             .collect()
     }
 
@@ -216,6 +261,131 @@ impl DesignChecks {
     }
 }
 
+/// The worst of one check over a run: how much [m] and when [s].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Worst {
+    amount: f64,
+    t: f64,
+}
+
+/// Records `amount` at `t` if it is the largest so far.
+fn keep(w: &mut Option<Worst>, amount: f64, t: f64) {
+    if w.is_none_or(|w| amount > w.amount) {
+        *w = Some(Worst { amount, t });
+    }
+}
+
+/// The design checks of the dynamic phase, run on every accepted step: per floater the
+/// deepest its top went below the local water surface beyond its own size, and whether it
+/// touched the bed; per net how deep it went into the bed's contact zone.
+#[derive(Debug, Clone, Default)]
+pub struct DynamicWatch {
+    /// Per floater: excess submergence η − (z + size/2) − size > 0 [m].
+    sunk: Vec<Option<Worst>>,
+    /// Per floater: depth of its lowest point below z_b + 1 mm [m].
+    float_bed: Vec<Option<Worst>>,
+    /// Per net: depth of its lowest node below z_b + 1 mm [m].
+    net_bed: Vec<Option<Worst>>,
+}
+
+impl DynamicWatch {
+    /// A watch for the floaters and nets of `checks`.
+    pub fn new(checks: &DesignChecks) -> Self {
+        Self {
+            sunk: vec![None; checks.floaters.len()],
+            float_bed: vec![None; checks.floaters.len()],
+            net_bed: vec![None; checks.nets.len()],
+        }
+    }
+
+    /// Checks the state `x` [m] at time `t` [s]; `eta(x, y)` is the water surface there [m].
+    pub fn step(
+        &mut self,
+        checks: &DesignChecks,
+        x: &[[f64; 3]],
+        t: f64,
+        eta: impl Fn(f64, f64) -> f64,
+    ) {
+        for (k, f) in checks.floaters.iter().enumerate() {
+            let half = 0.5 * f.size;
+            for p in f.nodes.iter().filter_map(|&n| x.get(n)) {
+                if let Some(zb) = checks.seabed_z {
+                    let into = zb + ON_BED - (p[2] - half);
+                    if into >= 0.0 {
+                        keep(&mut self.float_bed[k], into, t);
+                    }
+                }
+                if !f.submerged && f.size > 0.0 {
+                    let excess = eta(p[0], p[1]) - (p[2] + half) - f.size;
+                    if excess > 0.0 {
+                        keep(&mut self.sunk[k], excess, t);
+                    }
+                }
+            }
+        }
+        if let Some(zb) = checks.seabed_z {
+            for (k, (_, nodes)) in checks.nets.iter().enumerate() {
+                for p in nodes.iter().filter_map(|&n| x.get(n)) {
+                    let into = zb + ON_BED - p[2];
+                    if into >= 0.0 {
+                        keep(&mut self.net_bed[k], into, t);
+                    }
+                }
+            }
+        }
+    }
+
+    /// One warning per floater or net that failed a check during the run.
+    pub fn diagnostics(&self, checks: &DesignChecks) -> Vec<Diagnostic> {
+        let mut d = Vec::new();
+        let zb = checks.seabed_z.unwrap_or(f64::NEG_INFINITY);
+        for (k, f) in checks.floaters.iter().enumerate() {
+            if let Some(w) = self.sunk[k] {
+                d.push(Diagnostic::warning(
+                    "design/sunk-float",
+                    &f.location,
+                    format!(
+                        "{} went under water during the dynamics: its top was up to {:.3} m \
+                         deeper than its own size {} m below the local water surface (at t = \
+                         {:.3} s); it no longer floats there, so its buoyancy and the loads of \
+                         what hangs on it are those of a sunk body. Give it more volume or \
+                         freeboard, or hang less weight on it",
+                        f.label, w.amount, f.size, w.t
+                    ),
+                ));
+            }
+            if let Some(w) = self.float_bed[k] {
+                d.push(Diagnostic::warning(
+                    "design/float-on-seabed",
+                    &f.location,
+                    format!(
+                        "{} touched the seabed (z = {zb} m) during the dynamics, deepest at t = \
+                         {:.3} s: what should hold it up is too small for what hangs on it",
+                        f.label, w.t
+                    ),
+                ));
+            }
+        }
+        for (k, (name, _)) in checks.nets.iter().enumerate() {
+            if let Some(w) = self.net_bed[k] {
+                d.push(Diagnostic::warning(
+                    "design/on-seabed",
+                    name,
+                    format!(
+                        "'{name}' touched the seabed (z = {zb} m) during the dynamics, deepest at \
+                         t = {:.3} s ({:.3} m into the bed's contact): the bed carried part of \
+                         the net, whose loads are then not those of a hanging net. Make the net \
+                         or its weights shallower, or the sea deeper",
+                        w.t,
+                        w.amount - ON_BED
+                    ),
+                ));
+            }
+        }
+        d
+    }
+}
+
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
@@ -242,6 +412,7 @@ mod tests {
             }],
             seabed_z: Some(-20.0),
             kinks: Vec::new(),
+            nets: vec![("net".into(), vec![3])],
         }
     }
 
@@ -285,5 +456,44 @@ mod tests {
             c2.at_equilibrium(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, -5.0]])
                 .is_empty()
         );
+        // a net node 1 mm above the bed rests on it (the contact tolerance); 2 mm is free
+        let net_at = |z: f64| [[0.0; 3], [1.0, 0.0, 0.0], [6.0, 0.0, 0.0], [3.0, 0.0, z]];
+        assert!(codes(&net_at(-19.998)).is_empty());
+        assert_eq!(codes(&net_at(-19.9995)), vec!["design/on-seabed"]);
+        let on_bed: Vec<_> = [-20.0, -11.0, 0.0, -20.0]
+            .iter()
+            .map(|&z| p([0.0, 0.0, z]))
+            .collect();
+        let built: Vec<_> = c.as_built(&on_bed).iter().map(|d| d.code).collect();
+        assert!(built.contains(&"design/on-seabed"), "{built:?}");
+    }
+
+    #[test]
+    fn the_dynamic_watch_reports_the_worst_against_the_local_surface_once() {
+        let c = checks();
+        let mut w = DynamicWatch::new(&c);
+        // A 1 m buoy whose centre is 1.2 m under still water: its top 0.7 m down, less than its
+        // size; under a 2 m crest it is 2.7 m down, 1.7 m more than its size; in a 1 m trough
+        // it is afloat. The deepest excess is the one reported, with its time.
+        let x = |zb: f64| [[0.0; 3], [1.0, 0.0, 0.0], [5.0, 0.0, -1.2], [3.0, 0.0, zb]];
+        w.step(&c, &x(-10.0), 1.0, |_, _| 0.0);
+        assert!(w.diagnostics(&c).is_empty());
+        w.step(&c, &x(-10.0), 2.0, |_, _| -1.0);
+        w.step(
+            &c,
+            &x(-10.0),
+            3.0,
+            |xx, _| if xx == 5.0 { 2.0 } else { 0.0 },
+        );
+        w.step(&c, &x(-10.0), 4.0, |_, _| 1.5);
+        let d = w.diagnostics(&c);
+        assert_eq!(d.len(), 1, "{d:?}");
+        assert_eq!(d[0].code, "design/sunk-float");
+        assert!(d[0].message.contains("1.700 m"), "{}", d[0].message);
+        assert!(d[0].message.contains("t = 3.000 s"), "{}", d[0].message);
+        // The net touches the bed once, at t = 5 s: one more warning.
+        w.step(&c, &x(-19.9995), 5.0, |_, _| 0.0);
+        let codes: Vec<_> = w.diagnostics(&c).iter().map(|d| d.code).collect();
+        assert_eq!(codes, vec!["design/sunk-float", "design/on-seabed"]);
     }
 }

@@ -33,8 +33,9 @@ pub struct SummaryRow {
     pub volume_ratio: f64,
     /// Largest tension per structural group [N].
     pub max_tension: Vec<f64>,
-    /// Per line: |R| at the anchor, |R| at the fairlead, tension of the anchor element and of
-    /// the fairlead element [N].
+    /// Per line: |R| at the anchor, |R| at the fairlead (at an end attached to another
+    /// structure instead of a support: the tension of the end element, the line's pull on
+    /// it), tension of the anchor element and of the fairlead element [N].
     pub line_ends: Vec<[f64; 4]>,
     /// Newton iterations of the step (statics: all iterations).
     pub iterations: usize,
@@ -181,9 +182,18 @@ impl SummaryRow {
             .line_ends
             .iter()
             .map(|l| {
+                // A supported end reports the support's force; an end attached to another
+                // structure (a collar node, a buoy) the pull of the line's end element on it.
+                let end = |k: usize, node: usize, element: usize| {
+                    if l.supported[k] {
+                        norm(out.reaction[node])
+                    } else {
+                        out.tension[element]
+                    }
+                };
                 [
-                    norm(out.reaction[l.anchor]),
-                    norm(out.reaction[l.fairlead]),
+                    end(0, l.anchor, l.anchor_element),
+                    end(1, l.fairlead, l.fairlead_element),
                     out.tension[l.anchor_element],
                     out.tension[l.fairlead_element],
                 ]

@@ -5,6 +5,7 @@
 //! [`Observer`]; a stop request is honoured between steps and leaves every frame already
 //! delivered complete.
 
+use crate::design::DynamicWatch;
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
 use crate::plan::{Integrator, Prepared};
@@ -132,6 +133,8 @@ pub struct Simulation<'p> {
     loads: WaterLoads,
     volume0: f64,
     diagnostics: Vec<Diagnostic>,
+    /// Floaters and nets checked at every dynamic step (docs/theory/farm.md#design-warnings).
+    watch: DynamicWatch,
 }
 
 /// The water loads of a prepared scene, and the load models' warnings.
@@ -164,6 +167,7 @@ impl<'p> Simulation<'p> {
             loads,
             volume0,
             diagnostics,
+            watch: DynamicWatch::new(&prep.built.design),
         })
     }
 
@@ -246,6 +250,9 @@ impl<'p> Simulation<'p> {
                 }
                 obs.dynamics_started(plan.t_end);
                 let r = self.drive(solver.as_mut(), obs, record, initial.is_none());
+                for d in self.watch.diagnostics(&prep.built.design) {
+                    obs.diagnostic(&d);
+                }
                 if let Some(d) = energy_guard_warning(integrator, record) {
                     obs.diagnostic(&d);
                 }
@@ -284,6 +291,12 @@ impl<'p> Simulation<'p> {
             })?;
             record.steps += 1;
             record.iterations += report.iterations;
+            let built = &self.prep.built;
+            let t = solver.state().t;
+            self.watch
+                .step(&built.design, &solver.state().x, t, |x, y| {
+                    built.sea.elevation(x, y, t, Phase::Dynamic)
+                });
             obs.step_done(&report, record.steps);
             if report.output_time {
                 self.frame(

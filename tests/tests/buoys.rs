@@ -15,6 +15,8 @@ const G: f64 = 9.80665;
 struct Capture {
     x: Vec<[f64; 3]>,
     reaction: Vec<[f64; 3]>,
+    /// Per `[[line]]`: anchor and fairlead reactions, anchor and fairlead element tensions.
+    line_ends: Vec<[f64; 4]>,
     codes: Vec<&'static str>,
 }
 
@@ -25,6 +27,7 @@ impl Observer for Capture {
     fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
         self.x = f.state.x.clone();
         self.reaction = f.outputs.reaction.clone();
+        self.line_ends = f.row.line_ends.clone();
         Ok(())
     }
 }
@@ -123,6 +126,19 @@ fn sphere_on_a_vertical_tether_floats_where_the_balance_says() {
     );
     // Partly submerged, with the rope taut.
     assert!(z > -r && z < r && t > 1000.0, "{z} {t}");
+    // The fairlead is the buoy's free node: its reaction is the rope's pull on the buoy, T_n
+    // (not the 0 of a support that is not there); the anchor's is the support force,
+    // T_n − (n − 1)·w·le plus the bottom element's half weight that the anchor node carries.
+    let [anchor, fairlead, ..] = out.line_ends[0];
+    assert!(
+        (fairlead - t).abs() < 1e-6 * t,
+        "fairlead {fairlead} N, T_n {t} N"
+    );
+    let t_anchor = t - (n - 1) as f64 * w * le - w * le / 2.0;
+    assert!(
+        (anchor - t_anchor).abs() < 1e-6 * t,
+        "anchor {anchor} N, balance {t_anchor} N"
+    );
     assert!(iterations <= 40, "{iterations} static iterations");
     assert!(
         out.codes.iter().all(|c| !c.starts_with("design/")),

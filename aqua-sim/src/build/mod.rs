@@ -81,6 +81,10 @@ pub struct LineEnds {
     pub anchor_element: usize,
     /// Element at the fairlead.
     pub fairlead_element: usize,
+    /// Whether the anchor and the fairlead node are fixed or prescribed (their `_reaction` is
+    /// the support's force); a free end, attached to another structure, reports the pull of
+    /// its end element instead (docs/theory/fem.md#outputs).
+    pub supported: [bool; 2],
 }
 
 /// The panels of one net (one cage copy, panel or gmsh net).
@@ -172,8 +176,14 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
             .map(|b| b.node)
             .chain(buoy_nodes)
             .collect(),
+        nets: net_nodes(&mesh),
     };
     diagnostics.extend(design.as_built(&mesh.nodes));
+    let supported_nodes: Vec<usize> = st.supported.into_iter().collect();
+    let mut line_ends = line_ends;
+    for le in &mut line_ends {
+        le.supported = [le.anchor, le.fairlead].map(|n| supported_nodes.contains(&n));
+    }
     Ok(Built {
         mesh,
         model,
@@ -184,7 +194,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         panel_loaded: loads.panel_loaded,
         load_cells: loads.load_cells,
         group_names: st.group_names,
-        supported_nodes: st.supported.into_iter().collect(),
+        supported_nodes,
         nets: loads.nets,
         line_ends,
         farms,
@@ -367,6 +377,20 @@ fn node_path(elements: &[&LineElement], anchor: usize, fairlead: usize) -> Vec<u
     }
 }
 
+/// The nodes of every cage and panel object, by object name.
+fn net_nodes(mesh: &Mesh) -> Vec<(String, Vec<usize>)> {
+    let mut nets: Vec<(String, Vec<usize>)> = Vec::new();
+    for (oi, obj) in mesh.objects.iter().enumerate() {
+        if matches!(obj.kind, ObjectKind::Cage(_) | ObjectKind::Panel) {
+            let nodes = (0..mesh.nodes.len())
+                .filter(|&n| mesh.node_owner.get(n).is_some_and(|o| o.0 == oi as u32))
+                .collect();
+            nets.push((obj.name.clone(), nodes));
+        }
+    }
+    nets
+}
+
 /// How far below the seabed z = −h an as-built node may lie (round-off of a builder's
 /// anchor or laid chain) [m]: 1e-3·h.
 const BELOW_SEABED_TOLERANCE: f64 = 1e-3;
@@ -420,6 +444,7 @@ pub fn find_line_ends(mesh: &Mesh) -> Vec<LineEnds> {
                 fairlead: f,
                 anchor_element: first,
                 fairlead_element: last,
+                supported: [false; 2],
             });
         }
     }
