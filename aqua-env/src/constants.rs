@@ -2,12 +2,9 @@
 
 use serde::Serialize;
 
-/// Standard gravity [m/s²].
-pub const STANDARD_GRAVITY: f64 = 9.80665;
-/// Default sea-water density [kg/m³].
-pub const SEA_WATER_DENSITY: f64 = 1025.0;
-/// Default kinematic viscosity of sea water at 15 °C [m²/s].
-pub const SEA_WATER_VISCOSITY: f64 = 1.19e-6;
+/// Standard gravity [m/s²], sea-water density [kg/m³] and kinematic viscosity [m²/s]: the
+/// defaults of `[sea]`, one value each for every crate (from `aqua-constants`).
+pub use aqua_constants::{SEA_WATER_DENSITY, SEA_WATER_VISCOSITY, STANDARD_GRAVITY};
 
 /// Water depth h [m]: a flat seabed at z = −h, or no seabed at all.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -14,8 +14,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// What the water does at one point and time.
 ///
 /// Current and wave parts are separate because a wake factor multiplies the current only.
-/// Dry points (above the instantaneous surface) and points below the seabed have zero
-/// velocities, accelerations and pressure.
+/// Dry points (above the instantaneous surface) have zero velocities, accelerations and
+/// pressure; a point below the seabed plane has the flow at the bed right above it.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FlowPoint {
     /// Surface elevation η(x, y, t) [m] (wave ramp applied).
@@ -207,7 +207,8 @@ impl Sea {
         self.current.is_active()
     }
 
-    /// True once any evaluated point was below the seabed (warn once per run).
+    /// True once any evaluated point was below the seabed plane (and took the flow at the
+    /// bed): a body resting on the penalty seabed does so by its contact overlap.
     pub fn saw_point_below_seabed(&self) -> bool {
         self.below_seabed.load(Ordering::Relaxed)
     }
@@ -239,15 +240,18 @@ impl Sea {
     }
 
     fn at_with(&self, p: [f64; 3], t: f64, phase: Phase, cs: &mut SumScratch) -> FlowPoint {
-        let [x, y, z] = p;
+        let [x, y, z_point] = p;
         let mut out = FlowPoint::default();
-        if let Depth::Finite(h) = self.constants.depth
-            && z < -h
-        {
-            self.below_seabed.store(true, Ordering::Relaxed);
-            out.submergence = -z;
-            return out;
-        }
+        // Below the seabed plane the flow is the flow at the bed
+        // (docs/theory/environment.md#flow-at-a-point): a body resting on the penalty seabed
+        // sinks into it by its contact overlap and must see what it would see lying on it.
+        let z = match self.constants.depth {
+            Depth::Finite(h) if z_point < -h => {
+                self.below_seabed.store(true, Ordering::Relaxed);
+                -h
+            }
+            _ => z_point,
+        };
         // Waves first: they decide where the surface is.
         let mut wave = RawKinematics::default();
         if phase == Phase::Dynamic {
@@ -284,7 +288,7 @@ impl Sea {
                 wave.p_over_rho = r * k.p_over_rho;
             }
         }
-        out.submergence = out.eta - z;
+        out.submergence = out.eta - z_point;
         if z > out.eta {
             return out;
         }
@@ -349,6 +353,7 @@ impl Sea {
 mod tests {
     use super::*;
     use crate::airy::Component;
+    use crate::current::CurrentProfile;
 
     fn airy_sea(h: f64, stretching: Stretching) -> Sea {
         let c = Constants {
@@ -400,11 +405,36 @@ mod tests {
     }
 
     #[test]
-    fn below_seabed_is_zero_and_flagged() {
-        let sea = airy_sea(40.0, Stretching::None);
-        let f = sea.at([0.0, 0.0, -41.0], 1.0, Phase::Dynamic);
-        assert_eq!(f.wave_vel, [0.0; 3]);
-        assert!(sea.saw_point_below_seabed());
+    fn below_the_seabed_the_flow_is_the_flow_at_the_bed() {
+        let h = 40.0;
+        for stretching in [Stretching::None, Stretching::Wheeler] {
+            let mut sea = airy_sea(h, stretching);
+            sea.current = Current::uniform([0.5, 0.1, 0.0]);
+            let at_bed = sea.at([3.0, 2.0, -h], 1.0, Phase::Dynamic);
+            assert!(!sea.saw_point_below_seabed());
+            for sink in [0.003, 1.0] {
+                let below = sea.at([3.0, 2.0, -h - sink], 1.0, Phase::Dynamic);
+                assert_eq!(below.current, [0.5, 0.1, 0.0]);
+                assert_eq!(below.wave_vel, at_bed.wave_vel);
+                assert_eq!(below.wave_acc, at_bed.wave_acc);
+                assert_eq!(below.p_dyn, at_bed.p_dyn);
+                assert_eq!(below.eta, at_bed.eta);
+                // the point itself is that much deeper under the surface
+                assert!((below.submergence - (at_bed.submergence + sink)).abs() < 1e-12);
+            }
+            assert!(sea.saw_point_below_seabed());
+            // the orbits at a flat bed are horizontal, and they move there
+            assert!(at_bed.wave_vel[2].abs() < 1e-12 && at_bed.wave_vel[0].abs() > 1e-3);
+        }
+        // A power-law profile vanishes at the bed, and so below it.
+        let mut sea = airy_sea(h, Stretching::None);
+        sea.current = Current::with_profile(CurrentProfile::PowerLaw {
+            surface: [0.8, 0.0, 0.0],
+            exponent: 1.0 / 7.0,
+            depth: h,
+        });
+        let below = sea.at([0.0, 0.0, -h - 0.01], 0.0, Phase::Static);
+        assert_eq!(below.current, [0.0; 3]);
     }
 
     #[test]

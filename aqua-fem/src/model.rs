@@ -7,10 +7,11 @@ use crate::motion::{Motion, check_finite3};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
-/// Default gravitational acceleration [m/s²].
-pub const DEFAULT_GRAVITY: f64 = 9.80665;
-/// Default sea-water density [kg/m³].
-pub const DEFAULT_WATER_DENSITY: f64 = 1025.0;
+/// Default gravitational acceleration [m/s²] (standard gravity, the one value of
+/// `aqua-constants`; a scene passes its sea's g).
+pub const DEFAULT_GRAVITY: f64 = aqua_constants::STANDARD_GRAVITY;
+/// Default sea-water density [kg/m³] (`aqua-constants`).
+pub const DEFAULT_WATER_DENSITY: f64 = aqua_constants::SEA_WATER_DENSITY;
 /// Default compression ratio r_c of cable elements.
 pub const DEFAULT_COMPRESSION_RATIO: f64 = 0.0;
 

@@ -5,7 +5,10 @@
 //! NN = round(H/el), BN = round(R_b/(√2·el)) (square: round(a/(√2·el))). Net node (i, ℓ) =
 //! origin + ρ_ℓ·u_i + z_ℓ·ẑ with id i·L + ℓ, L = NN + BN; tip id NT·L; then the rope columns.
 
-use crate::collar::{Collar, CollarParams, default_bracket_section};
+use crate::collar::{
+    Collar, CollarParams, DEFAULT_PIPE_DIAMETER, DEFAULT_SINKER_TUBE_DIAMETER,
+    default_bracket_section, default_pipe_section,
+};
 use crate::error::{MeshError, Result};
 use crate::mesh::{
     CageCounts, MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride,
@@ -18,9 +21,8 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, SQRT_2};
 
-/// Standard gravity used to convert the default sinker masses to weights [m/s²].
-pub const G: f64 = 9.81;
-/// Default sinker weight per metre of circumference [N/m] (40 kg/m × 9.81).
+/// Default sinker weight per metre of circumference [N/m]: a submerged weight, specified in
+/// newtons (docs/theory/cages.md#cage-parameters); its mass is W/g with the sea's g.
 pub const DEFAULT_SINKER_WEIGHT_PER_METRE: f64 = 392.4;
 /// Default tip weight [N].
 pub const DEFAULT_TIP_WEIGHT: f64 = 981.0;
@@ -600,8 +602,8 @@ pub struct ResolvedCage {
 pub fn default_frame_section(group: &str) -> Option<Section> {
     match group {
         "ropes" | "tie_lines" => Some(Section::cable("rope", 0.05, 1.0e9, 1100.0)),
-        "top_ring" | "top_links" => Some(Section::pipe("HDPE pipe", 0.35, 0.0185, 1.0e9, 958.0)),
-        "bottom_ring" => Some(Section::pipe("HDPE pipe", 0.25, 0.0185, 1.0e9, 958.0)),
+        "top_ring" | "top_links" => Some(default_pipe_section(DEFAULT_PIPE_DIAMETER)),
+        "bottom_ring" => Some(default_pipe_section(DEFAULT_SINKER_TUBE_DIAMETER)),
         _ => None,
     }
 }
@@ -757,7 +759,7 @@ impl ResolvedCage {
         // Frame lines.
         let section = |name: &str| -> Result<Section> {
             let mut s = match name {
-                "top_ring" | "outer_ring" => self.collar.section.clone(),
+                "top_ring" | "outer_ring" | "top_links" => self.collar.section.clone(),
                 "brackets" => default_bracket_section(),
                 _ => default_frame_section(name).expect("frame group has a default section"),
             };

@@ -13,8 +13,12 @@ use serde::{Deserialize, Serialize};
 
 /// Default pipe outer diameter D [m].
 pub const DEFAULT_PIPE_DIAMETER: f64 = 0.35;
-/// Default pipe wall thickness t [m] (when neither `wall_thickness` nor `sdr` is given).
-pub const DEFAULT_WALL_THICKNESS: f64 = 0.0185;
+/// Default standard dimension ratio SDR = D/t of HDPE pipes: every default pipe wall is
+/// t = D/SDR (when neither `wall_thickness` nor `sdr` is given). SDR 17 (PN 10 for PE100) is
+/// the usual class of fish-farm collar pipe (docs/theory/cages.md#default-sections).
+pub const DEFAULT_SDR: f64 = 17.0;
+/// Default outer diameter of a CCT cage's sinker tube (`bottom_ring`) [m].
+pub const DEFAULT_SINKER_TUBE_DIAMETER: f64 = 0.25;
 /// Default HDPE density [kg/m³].
 pub const DEFAULT_PIPE_DENSITY: f64 = 958.0;
 /// Default HDPE Young's modulus [Pa] (short-term modulus of PE pipe grades, 0.8–1.1 GPa).
@@ -28,9 +32,10 @@ pub const DEFAULT_BRACKET_SPACING: f64 = 2.5;
 pub struct CollarParams {
     /// `collar.pipe_diameter` D [m], default 0.35.
     pub pipe_diameter: Option<f64>,
-    /// `collar.wall_thickness` t [m], 0 < t < D/2 (or `sdr`), default 0.0185.
+    /// `collar.wall_thickness` t [m], 0 < t < D/2 (or `sdr`), default D/17.
     pub wall_thickness: Option<f64>,
-    /// `collar.sdr` standard dimension ratio D/t (> 2), instead of `wall_thickness`.
+    /// `collar.sdr` standard dimension ratio D/t (> 2), instead of `wall_thickness`;
+    /// default [`DEFAULT_SDR`].
     pub sdr: Option<f64>,
     /// `collar.density` of the pipe material [kg/m³], default 958.
     pub density: Option<f64>,
@@ -88,7 +93,8 @@ impl CollarParams {
                     ),
                 ));
             }
-            (None, Some(s)) => {
+            (None, s) => {
+                let s = s.unwrap_or(DEFAULT_SDR);
                 if !(s.is_finite() && s > 2.0) {
                     return Err(MeshError::param(
                         obj,
@@ -100,8 +106,8 @@ impl CollarParams {
                 }
                 d / s
             }
-            (t, None) => {
-                let t = len("wall_thickness", t.unwrap_or(DEFAULT_WALL_THICKNESS))?;
+            (Some(t), None) => {
+                let t = len("wall_thickness", t)?;
                 if 2.0 * t >= d {
                     return Err(MeshError::param(
                         obj,
@@ -165,12 +171,27 @@ impl CollarParams {
             (0.0, DEFAULT_BRACKET_SPACING)
         };
         Ok(Collar {
-            section: Section::pipe("HDPE pipe", d, t, e, rho),
+            section: Section::pipe(PIPE_MATERIAL, d, t, e, rho),
             pipes: pipes as usize,
             pipe_spacing: spacing,
             bracket_spacing: brackets,
         })
     }
+}
+
+/// Material label of HDPE pipes.
+const PIPE_MATERIAL: &str = "HDPE pipe";
+
+/// Default HDPE pipe of outer diameter `d` [m]: wall d/[`DEFAULT_SDR`], E = 1.0e9 Pa,
+/// ρ = 958 kg/m³ (the collar's defaults; also the sinker tube's).
+pub fn default_pipe_section(d: f64) -> Section {
+    Section::pipe(
+        PIPE_MATERIAL,
+        d,
+        d / DEFAULT_SDR,
+        DEFAULT_PIPE_MODULUS,
+        DEFAULT_PIPE_DENSITY,
+    )
 }
 
 /// Default section of the brackets of a two-pipe collar: a steel tube 0.1 m × 5 mm,

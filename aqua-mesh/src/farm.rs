@@ -46,9 +46,9 @@ pub struct BuoyParams {
     /// C_D·A [m²] for isotropic quadratic drag, default 0.
     #[serde(default)]
     pub drag_area: f64,
-    /// Added-mass coefficient C_a (added mass C_a·ρ·V), default 0.
-    #[serde(default)]
-    pub added_mass_coefficient: f64,
+    /// Added-mass coefficient C_a (added mass C_a·ρ·V); `None`: the default of a vertical
+    /// cylinder buoy, set by the caller (aqua-sim's `[[buoy]]` defaults).
+    pub added_mass_coefficient: Option<f64>,
 }
 
 /// One `[[farm]]` table but its `cage` table (which the caller types with its net keys).
@@ -113,8 +113,8 @@ pub struct FarmBuoy {
     pub height: f64,
     /// C_D·A [m²].
     pub drag_area: f64,
-    /// Added-mass coefficient.
-    pub added_mass_coefficient: f64,
+    /// Added-mass coefficient; `None` = the caller's default for a vertical cylinder buoy.
+    pub added_mass_coefficient: Option<f64>,
 }
 
 /// What a farm builds: the mesh (cages, frame, anchor lines as objects) and its buoys.
@@ -558,7 +558,10 @@ fn check_buoy(obj: &str, b: &BuoyParams) -> Result<FarmBuoy> {
     for (k, v) in [
         ("buoy.mass", b.mass),
         ("buoy.drag_area", b.drag_area),
-        ("buoy.added_mass_coefficient", b.added_mass_coefficient),
+        (
+            "buoy.added_mass_coefficient",
+            b.added_mass_coefficient.unwrap_or(0.0),
+        ),
     ] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(MeshError::param(obj, k, v, "must be a finite number >= 0"));

@@ -73,6 +73,8 @@ pub struct LineParams {
     pub diameter: Option<f64>,
     /// `wall_thickness` [m].
     pub wall_thickness: Option<f64>,
+    /// `sdr`: standard dimension ratio D/t of a pipe, instead of `wall_thickness`.
+    pub sdr: Option<f64>,
     /// `ea` [N] (or `youngs_modulus`).
     pub ea: Option<f64>,
     /// `youngs_modulus` [Pa].
@@ -128,6 +130,8 @@ pub struct LineSegment {
     pub diameter: Option<f64>,
     /// `wall_thickness` [m].
     pub wall_thickness: Option<f64>,
+    /// `sdr`: standard dimension ratio D/t of a pipe, instead of `wall_thickness`.
+    pub sdr: Option<f64>,
     /// `ea` [N] (or `youngs_modulus`).
     pub ea: Option<f64>,
     /// `youngs_modulus` [Pa].
@@ -173,6 +177,7 @@ impl LineParams {
             over: SectionOverride {
                 diameter: None,
                 wall_thickness: self.wall_thickness,
+                sdr: self.sdr,
                 ea: self.ea,
                 youngs_modulus: self.youngs_modulus,
                 density: self.density,
@@ -202,6 +207,7 @@ impl LineSegment {
             over: SectionOverride {
                 diameter: None,
                 wall_thickness: self.wall_thickness,
+                sdr: self.sdr,
                 ea: self.ea,
                 youngs_modulus: self.youngs_modulus,
                 density: self.density,
@@ -745,6 +751,7 @@ impl LineParams {
             ("group", self.group.is_some()),
             ("diameter", self.diameter.is_some()),
             ("wall_thickness", self.wall_thickness.is_some()),
+            ("sdr", self.sdr.is_some()),
             ("ea", self.ea.is_some()),
             ("youngs_modulus", self.youngs_modulus.is_some()),
             ("density", self.density.is_some()),

@@ -939,6 +939,8 @@ pub struct SectionOverride {
     pub diameter: Option<f64>,
     /// `wall_thickness` of a pipe [m].
     pub wall_thickness: Option<f64>,
+    /// `sdr`: standard dimension ratio D/t of a pipe (> 2), instead of `wall_thickness`.
+    pub sdr: Option<f64>,
     /// `ea` [N].
     pub ea: Option<f64>,
     /// `youngs_modulus` E [Pa].
@@ -1007,26 +1009,42 @@ impl SectionOverride {
                 _ => Ok(v),
             }
         };
+        if let (Some(t), Some(r)) = (self.wall_thickness, self.sdr) {
+            return Err(MeshError::inconsistent(
+                object,
+                format!(
+                    "both `{}` = {t} and `{}` = {r} given; give only one (sdr = diameter / \
+                     wall_thickness)",
+                    key("wall_thickness"),
+                    key("sdr")
+                ),
+            ));
+        }
         if let Some(d) = pos("diameter", self.diameter)? {
+            // A pipe keeps its dimension ratio: a new diameter alone scales the wall with it
+            // (docs/theory/fem.md#sections).
+            if let Some(t) = s.wall_thickness {
+                s.wall_thickness = Some(t * d / s.diameter);
+            }
             s.diameter = d;
             s.elastic_diameter = d;
             s.hydro_diameter = d;
             s.volume_diameter = d;
         }
         if let Some(t) = pos("wall_thickness", self.wall_thickness)? {
-            if 2.0 * t >= s.diameter {
+            s.wall_thickness = Some(t);
+        }
+        if let Some(r) = self.sdr {
+            if !(r.is_finite() && r > 2.0) {
                 return Err(MeshError::param(
                     object,
-                    &key("wall_thickness"),
-                    t,
-                    format!(
-                        "must be < diameter/2 = {} m (a pipe wall thinner than the radius; \
-                         leave wall_thickness out for a solid section)",
-                        s.diameter / 2.0
-                    ),
+                    &key("sdr"),
+                    r,
+                    "must be > 2 (SDR = diameter / wall_thickness; SDR <= 2 is a wall as thick \
+                     as the radius); HDPE pipes are typically SDR 11 to 26",
                 ));
             }
-            s.wall_thickness = Some(t);
+            s.wall_thickness = Some(s.diameter / r);
         }
         if let Some(v) = pos("ea", self.ea)? {
             s.ea = Some(v);
@@ -1093,6 +1111,34 @@ impl SectionOverride {
         if let Some(v) = self.bending {
             s.bending = Some(v);
         }
-        Ok(())
+        check_wall(s, object, &key("wall_thickness"), &key("sdr"))
     }
+}
+
+/// A pipe's wall must be thinner than its radius, for the mass (`diameter`) and, unless `ea`
+/// is given, for the stiffness (`elastic_diameter`); the error names the wall and the fix.
+fn check_wall(s: &Section, object: &str, wall_key: &str, sdr_key: &str) -> crate::Result<()> {
+    let Some(t) = s.wall_thickness else {
+        return Ok(());
+    };
+    let mut sizes = vec![("diameter", s.diameter)];
+    if s.ea.is_none() {
+        sizes.push(("elastic_diameter", s.elastic_diameter));
+    }
+    for (name, d) in sizes {
+        if 2.0 * t >= d {
+            return Err(crate::MeshError::param(
+                object,
+                wall_key,
+                t,
+                format!(
+                    "a pipe wall must be thinner than the radius, {name}/2 = {} m: give a \
+                     smaller `{wall_key}` [m], or `{sdr_key}` (wall = diameter/sdr, e.g. 17 for \
+                     HDPE pipe)",
+                    d / 2.0
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -32,6 +32,30 @@ pub enum BuoyShape {
     Point,
 }
 
+impl BuoyShape {
+    /// Default drag coefficient C_d on the projected area: 0.5 for a sphere (subcritical
+    /// Reynolds numbers), 1.0 for a short vertical cylinder, 0 for a point (no area).
+    pub fn default_drag_coefficient(self) -> f64 {
+        match self {
+            BuoyShape::Sphere => 0.5,
+            BuoyShape::Cylinder => 1.0,
+            BuoyShape::Point => 0.0,
+        }
+    }
+
+    /// Default added-mass coefficient C_a (added mass C_a·ρ_w·V_sub): 0.5 for a sphere, 1.0
+    /// for a vertical cylinder in horizontal motion (the 2-D potential-flow value), 0 for a
+    /// point. The one default of each body kind: `[[buoy]]` and a farm's buoys (vertical
+    /// cylinders) take it from here (docs/theory/farm.md#buoys).
+    pub fn default_added_mass(self) -> f64 {
+        match self {
+            BuoyShape::Sphere => 0.5,
+            BuoyShape::Cylinder => 1.0,
+            BuoyShape::Point => 0.0,
+        }
+    }
+}
+
 /// One `[[buoy]]` table.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -179,14 +203,18 @@ impl BuoySpec {
         }
     }
 
-    fn coefficients(&self, cd: f64, ca: f64, area: f64) -> Result<(f64, f64), String> {
+    fn coefficients(&self, area: f64) -> Result<(f64, f64), String> {
         let drag_area = match (self.drag_area, self.drag_coefficient) {
             (Some(a), _) => non_negative("drag_area", a)?,
-            (None, c) => non_negative("drag_coefficient", c.unwrap_or(cd))? * area,
+            (None, c) => {
+                let c = c.unwrap_or(self.shape.default_drag_coefficient());
+                non_negative("drag_coefficient", c)? * area
+            }
         };
         let ca = non_negative(
             "added_mass_coefficient",
-            self.added_mass_coefficient.unwrap_or(ca),
+            self.added_mass_coefficient
+                .unwrap_or(self.shape.default_added_mass()),
         )?;
         Ok((drag_area, ca))
     }
@@ -202,7 +230,7 @@ impl BuoySpec {
             (_, Some(v)) => (3.0 * v / (4.0 * PI)).cbrt(),
             _ => unreachable!("size_keys gives one of them"),
         };
-        let (drag_area, added_mass) = self.coefficients(0.5, 0.5, PI * r * r)?;
+        let (drag_area, added_mass) = self.coefficients(PI * r * r)?;
         let props = PointProps {
             volume: 4.0 / 3.0 * PI * r * r * r,
             shape: PointShape::Sphere { radius: r },
@@ -226,7 +254,7 @@ impl BuoySpec {
             (_, Some(v)) => (4.0 * v / (PI * h)).sqrt(),
             _ => unreachable!("size_keys gives one of them"),
         };
-        let (drag_area, added_mass) = self.coefficients(1.0, 1.0, d * h)?;
+        let (drag_area, added_mass) = self.coefficients(d * h)?;
         let props = PointProps {
             volume: 0.25 * PI * d * d * h,
             shape: PointShape::Prism { height: h },

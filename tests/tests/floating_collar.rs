@@ -24,7 +24,8 @@ const R: f64 = 10.0;
 const N: usize = 64;
 /// Default collar pipe (docs/theory/cages.md#default-sections).
 const D: f64 = 0.35;
-const T: f64 = 0.0185;
+/// Its wall: SDR 17 (docs/theory/cages.md#default-sections).
+const T: f64 = D / 17.0;
 const RHO_PIPE: f64 = 958.0;
 const E: f64 = 1.0e9;
 

@@ -28,7 +28,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0.5)]
     pub speed: f64,
     /// Kinematic viscosity ν [m²/s].
-    #[arg(long, default_value_t = 1.19e-6)]
+    #[arg(long, default_value_t = aqua_env::constants::SEA_WATER_VISCOSITY)]
     pub viscosity: f64,
     /// Fixed cylinder drag coefficient for S3/S6 instead of C_cyl(Re).
     #[arg(long)]

@@ -231,7 +231,9 @@ fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> 
                     volume: b.volume,
                     shape: aqua_hydro::point::PointShape::Prism { height: b.height },
                     drag_area: b.drag_area,
-                    added_mass: b.added_mass_coefficient,
+                    added_mass: b
+                        .added_mass_coefficient
+                        .unwrap_or(crate::buoy::BuoyShape::Cylinder.default_added_mass()),
                 },
             });
         }
