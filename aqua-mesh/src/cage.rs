@@ -896,8 +896,9 @@ impl ResolvedCage {
 
         // Mesh grouping (docs/theory/cages.md#mesh-grouping) from copy 0.
         let mut notices = self.notices.clone();
-        let mean = b.mean_length(g_tw);
-        let grouping = self.net.grouping(obj, mean, &mut notices)?;
+        let grouping = self
+            .net
+            .group_net(&mut b, obj, g_tw, Some(g_pa), &mut notices)?;
         let mut tw = grouping.twine_section();
         if let Some(o) = self.groups.get("net_twines") {
             o.apply(obj, "groups.net_twines", &mut tw)?;
