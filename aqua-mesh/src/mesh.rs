@@ -450,6 +450,8 @@ pub struct CageCounts {
     pub bn: usize,
     /// Frame extension segments (n_x, n_t or n_b; 0 if not used).
     pub n_ext: usize,
+    /// Physical ropes of the design (CCT, CCS: the `ropes` key; CSM, SSM: NT, one per column).
+    pub ropes: usize,
     /// Top radius (circular) or half-width (square) R_t / h [m].
     pub top_radius: f64,
     /// Bottom radius R_b (square: h) [m].

@@ -1,7 +1,8 @@
 //! The numerical net carries the physical net's twine (docs/theory/cages.md#mesh-grouping): its
 //! twine volume, mass, axial stiffness and Morison area equal those of a square-mesh net of the
 //! same area, half mesh and twine, computed here independently from the net's area in closed
-//! form.
+//! form; and the rope columns of CCT/CCS cages carry the design's ropes whatever the element
+//! length (docs/theory/cages.md#frame-ropes-and-weights).
 
 use aqua_mesh::{CageParams, CageType, GmshParams, Mesh, PanelParams, Role, import_gmsh};
 use std::f64::consts::{FRAC_PI_4, PI};
@@ -188,4 +189,52 @@ fn twine_stiffness_is_the_strip_of_net_it_represents() {
             }
         }
     }
+}
+
+/// Rope length [m] and Morison drag area [m²] of the `ropes` group, each element counted
+/// `section_scale` times.
+fn rope_totals(m: &Mesh) -> (f64, f64) {
+    let g = &m.groups[m.group_index(0, "ropes").unwrap()];
+    let s = g.section.as_ref().unwrap();
+    g.lines.iter().fold((0.0, 0.0), |(l, a), &e| {
+        let k = m.lines[e].section_scale;
+        let len = m.line_length(e);
+        (l + k * len, a + k * len * s.hydro_diameter)
+    })
+}
+
+#[test]
+fn rope_count_and_length_are_the_designs() {
+    // Defaults: C = 120 m, H = 15 m, f = 1 m, tube 2.5 m below the net, CCS weight 2H below it;
+    // ropes = round(120/2.5) = 48, whatever the element length.
+    let r = 120.0 / (2.0 * PI);
+    let rope = |kind| match kind {
+        CageType::Cct => 15.0 + 2.5,
+        _ => 15.0 + ((r + 1.0).powi(2) + 30.0f64.powi(2)).sqrt(),
+    };
+    for kind in [CageType::Cct, CageType::Ccs] {
+        for (ropes, set) in [(48, None), (16, Some(16))] {
+            for el in [5.0, 2.5, 1.77] {
+                let mut p = cage(kind, el);
+                p.ropes = set;
+                let m = p.build().unwrap();
+                assert_eq!(m.objects[0].counts.as_ref().unwrap().ropes, ropes);
+                let (len, area) = rope_totals(&m);
+                let want = ropes as f64 * rope(kind);
+                assert!(
+                    (len - want).abs() < 1e-9 * want,
+                    "{kind:?} el {el}: rope length {len} vs {want}"
+                );
+                assert!((area - 0.05 * want).abs() < 1e-9 * want, "{kind:?} el {el}");
+            }
+        }
+    }
+    let mut p = cage(CageType::Cct, 2.5);
+    p.ropes = Some(2);
+    let e = p.build().unwrap_err().to_string();
+    assert!(e.contains("ropes") && e.contains(">= 3"), "{e}");
+    let mut p = cage(CageType::Csm, 2.5);
+    p.ropes = Some(12);
+    let e = p.build().unwrap_err().to_string();
+    assert!(e.contains("ropes") && e.contains("CSM"), "{e}");
 }

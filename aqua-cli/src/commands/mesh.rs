@@ -345,9 +345,9 @@ pub fn report_with(
         );
         if let Some(c) = &o.counts {
             println!(
-                "  NT = {}, NN = {}, BN = {}, extension segments = {}; R_top = {:.4} m, \
-                 R_bottom = {:.4} m",
-                c.nt, c.nn, c.bn, c.n_ext, c.top_radius, c.bottom_radius
+                "  NT = {}, NN = {}, BN = {}, extension segments = {}, ropes = {}; R_top = {:.4} \
+                 m, R_bottom = {:.4} m",
+                c.nt, c.nn, c.bn, c.n_ext, c.ropes, c.top_radius, c.bottom_radius
             );
             println!(
                 "  element lengths: ring {:.4} m, side {:.4} m, cone {:.4} m",
