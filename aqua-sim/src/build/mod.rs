@@ -171,6 +171,12 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
             .collect(),
     };
     diagnostics.extend(design.as_built(&mesh.nodes));
+    diagnostics.extend(crate::design::sinker_tubes(
+        &mesh,
+        &st.sections,
+        model.environment().water_density,
+        model.environment().gravity,
+    ));
     Ok(Built {
         mesh,
         model,
