@@ -933,9 +933,13 @@ impl ResolvedCage {
 
         // Mesh grouping (docs/theory/cages.md#mesh-grouping) from copy 0.
         let mut notices = self.notices.clone();
+        let size = format!(
+            "`circumference` = {} m, `depth` = {} m and `cone_depth` = {} m",
+            self.circumference, self.depth, self.cone_depth
+        );
         let grouping = self
             .net
-            .group_net(&mut b, obj, g_tw, Some(g_pa), &mut notices)?;
+            .group_net(&mut b, obj, g_tw, Some(g_pa), &size, &mut notices)?;
         let mut tw = grouping.twine_section();
         if let Some(o) = self.groups.get("net_twines") {
             o.apply(obj, "groups.net_twines", &mut tw)?;

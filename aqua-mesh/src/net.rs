@@ -301,6 +301,7 @@ impl NetResolved {
         &self,
         object: &str,
         twines: &TwineAreas,
+        size: &str,
         notices: &mut Vec<String>,
     ) -> Result<(NetGrouping, Vec<f64>)> {
         let n = twines.lengths.len().max(1) as f64;
@@ -334,8 +335,18 @@ impl NetResolved {
                 self.half_mesh,
                 format!(
                     "gives grouping ratio λ = {lambda:.4} < 1 (a numerical twine, of mean length \
-                     {mean_twine_length:.6} m, would carry less than one real twine); use a \
-                     longer element_length or set net.grouping_ratio"
+                     {mean_twine_length:.6} m, would carry less than one real twine{}); use a \
+                     longer element_length or set net.grouping_ratio",
+                    if twines.net_area > 0.0 {
+                        format!(
+                            ": the net's {:.6e} m² from {size} hold {:.6e} m of twine, the mesh \
+                             {total:.6e} m",
+                            twines.net_area,
+                            2.0 * twines.net_area / lp
+                        )
+                    } else {
+                        String::new()
+                    }
                 ),
             ));
         }
@@ -376,17 +387,19 @@ impl NetResolved {
 
     /// Groups the net of the builder's object (copy 0): the twines of group `twines` carry the
     /// net area of the panels of group `panels`; sets each twine's section scale and returns
-    /// the grouping. The caller sets the group's section.
+    /// the grouping. `size` names the keys the net's size comes from (for messages). The
+    /// caller sets the group's section.
     pub(crate) fn group_net(
         &self,
         b: &mut MeshBuilder,
         object: &str,
         twines: usize,
         panels: Option<usize>,
+        size: &str,
         notices: &mut Vec<String>,
     ) -> Result<NetGrouping> {
         let areas = TwineAreas::of(&b.mesh, twines, panels);
-        let (grouping, scales) = self.grouping(object, &areas, notices)?;
+        let (grouping, scales) = self.grouping(object, &areas, size, notices)?;
         for (k, s) in scales.into_iter().enumerate() {
             let e = b.mesh.groups[twines].lines[k];
             b.mesh.lines[e].section_scale = s;
@@ -419,7 +432,7 @@ mod tests {
             areas: vec![Some(3.0), Some(1.0)],
             net_area: 4.0,
         };
-        let (g, s) = net.grouping("t", &t, &mut vec![]).unwrap();
+        let (g, s) = net.grouping("t", &t, "", &mut vec![]).unwrap();
         let (l0, l1) = (3.0 / lp, 2.0 / lp);
         let mean = (l0 * 2.0 + l1) / 3.0;
         assert!((g.lambda - mean).abs() < 1e-9 * mean);
@@ -435,7 +448,7 @@ mod tests {
         // dwh = λ·dw0 = 0.2312 m.
         let net = NetParams::default().resolve("t", &mut vec![]).unwrap();
         let (g, _) = net
-            .grouping("t", &unpaneled(81.11 * DEFAULT_HALF_MESH), &mut vec![])
+            .grouping("t", &unpaneled(81.11 * DEFAULT_HALF_MESH), "", &mut vec![])
             .unwrap();
         assert!((g.structural_diameter - 0.02567).abs() / 0.02567 < 1e-3);
         assert!((g.hydro_diameter - 0.2312).abs() / 0.2312 < 1e-3);
@@ -465,9 +478,9 @@ mod tests {
         n.resolve("cage0", &mut notes).unwrap();
         assert_eq!(notes.len(), 1);
         let r = NetParams::default().resolve("c", &mut vec![]).unwrap();
-        assert!(r.grouping("c", &unpaneled(0.01), &mut vec![]).is_err());
+        assert!(r.grouping("c", &unpaneled(0.01), "", &mut vec![]).is_err());
         let mut notes = vec![];
-        r.grouping("c", &unpaneled(600.0 * DEFAULT_HALF_MESH), &mut notes)
+        r.grouping("c", &unpaneled(600.0 * DEFAULT_HALF_MESH), "", &mut notes)
             .unwrap();
         assert_eq!(notes.len(), 1);
     }
