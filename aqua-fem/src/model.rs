@@ -355,7 +355,24 @@ impl ModelBuilder {
         group: GroupId,
         length: UnstretchedLength,
     ) -> Result<usize> {
+        self.add_scaled_cable(a, b, group, length, 1.0)
+    }
+
+    /// Adds a cable element that stands for `scale` (> 0) of its group's section: EA, μ and the
+    /// axial damping are `scale` times the group's (a net twine carrying λ_e/λ̄ of the mean
+    /// numerical twine, docs/theory/cages.md#mesh-grouping). Returns its index.
+    pub fn add_scaled_cable(
+        &mut self,
+        a: usize,
+        b: usize,
+        group: GroupId,
+        length: UnstretchedLength,
+        scale: f64,
+    ) -> Result<usize> {
         let id = self.elements.len();
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(invalid(format!("element {id} section scale"), scale, "> 0"));
+        }
         self.check_node(&format!("element {id}"), a)?;
         self.check_node(&format!("element {id}"), b)?;
         if a == b {
@@ -366,7 +383,12 @@ impl ModelBuilder {
         let g = self.groups.get(group.0).ok_or_else(|| {
             FemError::InvalidModel(format!("element {id}: group id {} does not exist", group.0))
         })?;
-        let s = g.section;
+        let mut s = g.section;
+        s.ea *= scale;
+        s.mass_per_length *= scale;
+        if let AxialDamping::Coefficient(c) = &mut s.axial_damping {
+            *c *= scale;
+        }
         let l = dist(self.nodes[a], self.nodes[b]);
         let l0 = match length {
             UnstretchedLength::Given(l0) => l0,

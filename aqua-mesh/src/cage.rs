@@ -26,6 +26,9 @@ use std::f64::consts::{PI, SQRT_2};
 pub const DEFAULT_SINKER_WEIGHT_PER_METRE: f64 = 392.4;
 /// Default tip weight [N].
 pub const DEFAULT_TIP_WEIGHT: f64 = 981.0;
+/// Default spacing of the vertical ropes of CCT and CCS cages along the circumference [m]
+/// (`ropes` = round(C / 2.5 m), at least 3).
+pub const DEFAULT_ROPE_SPACING: f64 = 2.5;
 /// Most nodes a builder accepts (more is likely a unit mistake).
 pub const MAX_NODES: usize = 2_000_000;
 
@@ -106,6 +109,7 @@ impl CageType {
         }
         if matches!(t, CageType::Cct | CageType::Ccs) {
             k.push("bottom_ratio");
+            k.push("ropes");
         }
         if matches!(t, CageType::Csm | CageType::Ssm) {
             k.push("rope_depth");
@@ -163,6 +167,10 @@ pub struct CageParams {
     pub centre_weight: Option<f64>,
     /// `tip_weight` [N], default 981.
     pub tip_weight: Option<f64>,
+    /// `ropes`: number of vertical ropes of the design (CCT, CCS), ≥ 3; default
+    /// round(C / [`DEFAULT_ROPE_SPACING`]). The rope columns follow the mesh and carry
+    /// `ropes`/NT ropes each (docs/theory/cages.md#frame-ropes-and-weights).
+    pub ropes: Option<usize>,
     /// `fixed`: groups whose nodes are fixed, default `["top_ring"]`.
     pub fixed: Option<Vec<String>>,
     /// `net.*`.
@@ -197,6 +205,7 @@ impl CageParams {
             sinker_weight_per_metre: None,
             centre_weight: None,
             tip_weight: None,
+            ropes: None,
             fixed: None,
             net: NetParams::default(),
             collar: CollarParams::default(),
@@ -210,6 +219,7 @@ impl CageParams {
             ($($f:ident),*) => {$( if self.$f.is_some() { k.push(stringify!($f)); } )*};
         }
         chk!(
+            ropes,
             circumference,
             diameter,
             side,
@@ -432,6 +442,23 @@ impl CageParams {
             neg_hint,
         )?;
 
+        let ropes = match kind {
+            CageType::Cct | CageType::Ccs => {
+                let n = self
+                    .ropes
+                    .unwrap_or(((c / DEFAULT_ROPE_SPACING).round() as usize).max(3));
+                if n < 3 {
+                    return Err(MeshError::param(
+                        obj,
+                        "ropes",
+                        n,
+                        "must be >= 3 (the number of vertical ropes around the cage)",
+                    ));
+                }
+                n
+            }
+            _ => nt,
+        };
         let origins = self.origins.clone().unwrap_or_else(|| vec![[0.0; 3]]);
         if origins.is_empty() {
             return Err(MeshError::param(
@@ -518,6 +545,7 @@ impl CageParams {
             sinker_weight_per_metre: sinker_w,
             centre_weight: centre_w,
             tip_weight: tip_w,
+            ropes,
             nt,
             ns,
             nn,
@@ -572,6 +600,8 @@ pub struct ResolvedCage {
     pub centre_weight: f64,
     /// [N].
     pub tip_weight: f64,
+    /// Physical ropes of the design (CCT, CCS: `ropes`; CSM, SSM: NT).
+    pub ropes: usize,
     /// Nodes around NT.
     pub nt: usize,
     /// Nodes per side n_s (square only).
@@ -791,6 +821,13 @@ impl ResolvedCage {
                 b.add_line(g_ropes, col(i, n_f - 1), c, None);
             }
         }
+        // The rope columns follow the mesh; together they carry the design's ropes
+        // (docs/theory/cages.md#frame-ropes-and-weights).
+        let per_column = self.ropes as f64 / nt as f64;
+        for k in 0..b.mesh.groups[g_ropes].lines.len() {
+            let e = b.mesh.groups[g_ropes].lines[k];
+            b.mesh.lines[e].section_scale = per_column;
+        }
         let g_ties = b.group("tie_lines", Role::TieLines, Some(section("tie_lines")?));
         match self.kind {
             CageType::Cct | CageType::Cst => {
@@ -898,8 +935,13 @@ impl ResolvedCage {
 
         // Mesh grouping (docs/theory/cages.md#mesh-grouping) from copy 0.
         let mut notices = self.notices.clone();
-        let mean = b.mean_length(g_tw);
-        let grouping = self.net.grouping(obj, mean, &mut notices)?;
+        let size = format!(
+            "`circumference` = {} m, `depth` = {} m and `cone_depth` = {} m",
+            self.circumference, self.depth, self.cone_depth
+        );
+        let grouping = self
+            .net
+            .group_net(&mut b, obj, g_tw, Some(g_pa), &size, &mut notices)?;
         let mut tw = grouping.twine_section();
         if let Some(o) = self.groups.get("net_twines") {
             o.apply(obj, "groups.net_twines", &mut tw)?;
@@ -912,6 +954,7 @@ impl ResolvedCage {
             nn: self.nn,
             bn: self.bn,
             n_ext: self.n_ext,
+            ropes: self.ropes,
             top_radius: self.r_t,
             bottom_radius: self.r_b,
             ring_element_length: (x(net_id(1, 0)) - x(net_id(0, 0))).norm(),

@@ -67,7 +67,7 @@ pub use mesh::{
     CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,
     ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section, SectionOverride,
 };
-pub use net::{NetGrouping, NetParams, NetResolved};
+pub use net::{NetGrouping, NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};
 pub use vtk::{PvdWriter, VtkArray, VtkArrays, VtuSeries, write_vtu};
 pub use vtm::{BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays};

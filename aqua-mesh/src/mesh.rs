@@ -370,6 +370,11 @@ pub struct LineElement {
     pub copy: u32,
     /// Unstretched length L0 [m] when the builder sets it (single lines); `None` = as built.
     pub rest_length: Option<f64>,
+    /// How many of its group's sections the element stands for (1 for most elements): its
+    /// axial stiffness, mass, displaced volume and Morison drag area are this multiple of the
+    /// group section's. Net twines: λ_e/λ̄ (docs/theory/cages.md#mesh-grouping); CCT/CCS
+    /// ropes: design ropes per rope column (docs/theory/cages.md#frame-ropes-and-weights).
+    pub section_scale: f64,
 }
 
 /// Corner nodes of a net panel, in cyclic order (valid VTK order), normal by the right-hand rule.
@@ -445,6 +450,8 @@ pub struct CageCounts {
     pub bn: usize,
     /// Frame extension segments (n_x, n_t or n_b; 0 if not used).
     pub n_ext: usize,
+    /// Physical ropes of the design (CCT, CCS: the `ropes` key; CSM, SSM: NT, one per column).
+    pub ropes: usize,
     /// Top radius (circular) or half-width (square) R_t / h [m].
     pub top_radius: f64,
     /// Bottom radius R_b (square: h) [m].
@@ -816,6 +823,7 @@ impl MeshBuilder {
             object: 0,
             copy: 0,
             rest_length,
+            section_scale: 1.0,
         });
         self.mesh.groups[group]
             .lines
@@ -863,19 +871,6 @@ impl MeshBuilder {
             weight,
             group,
         });
-    }
-
-    /// Mean length of the lines of `group` [m].
-    pub fn mean_length(&self, group: usize) -> f64 {
-        let g = &self.mesh.groups[group];
-        if g.lines.is_empty() {
-            return 0.0;
-        }
-        g.lines
-            .iter()
-            .map(|&e| self.mesh.line_length(e))
-            .sum::<f64>()
-            / g.lines.len() as f64
     }
 }
 

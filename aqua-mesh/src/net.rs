@@ -1,13 +1,16 @@
 //! Net parameters and mesh grouping (docs/theory/cages.md#cage-parameters `net.*`, #mesh-grouping;
 //! docs/theory/fem.md#sections).
 //!
-//! One numerical twine of mean length L̄ stands for λ = L̄ / l_p physical twines
-//! (l_p = half mesh = bar length). Diameters: dws = dwe = √λ·dw0 (structural, elastic),
-//! dwh = λ·dw0 (hydrodynamic).
+//! A physical square-mesh net of half mesh l_p holds 2/l_p metres of twine per square metre. Each
+//! numerical twine e carries the twine of the net area A_e it represents (its share of the
+//! panels it borders): λ_e = 2·A_e/(l_p·L_e) physical twines side by side. The group section is
+//! that of the length-weighted mean λ̄ (dws = dwe = √λ̄·dw0, dwh = λ̄·dw0) and each element
+//! scales it by λ_e/λ̄ ([`crate::LineElement::section_scale`]).
 
 use crate::error::{MeshError, Result};
-use crate::mesh::Section;
+use crate::mesh::{Mesh, MeshBuilder, PanelNodes, Section};
 use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 
 /// Default physical twine diameter dw0 [m].
 pub const DEFAULT_TWINE_DIAMETER: f64 = 2.85e-3;
@@ -67,8 +70,14 @@ pub struct NetGrouping {
     pub solidity: f64,
     /// Mean as-built length of the object's `net_twines` elements [m].
     pub mean_twine_length: f64,
-    /// Grouping ratio λ.
+    /// Area of the object's net panels (copy 0) [m²]; 0 when the net has no panels.
+    pub net_area: f64,
+    /// Grouping ratio λ̄: physical twines per numerical twine, length-weighted mean over the
+    /// elements (the given `net.grouping_ratio`, else 2·A/(l_p·ΣL_e) when every twine borders a
+    /// panel).
     pub lambda: f64,
+    /// Smallest and largest λ_e of the elements.
+    pub lambda_range: [f64; 2],
     /// True when λ came from `net.grouping_ratio`.
     pub lambda_given: bool,
     /// Structural diameter dws = √λ·dw0 [m].
@@ -200,19 +209,124 @@ impl NetParams {
     }
 }
 
+/// The net area each twine of an object's net represents (docs/theory/cages.md#mesh-grouping).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwineAreas {
+    /// As-built length L_e of each twine, in the group's order [m].
+    pub lengths: Vec<f64>,
+    /// Net area A_e each twine carries [m²]; `None` for a twine on no panel edge.
+    pub areas: Vec<Option<f64>>,
+    /// Total area of the panels [m²].
+    pub net_area: f64,
+}
+
+impl TwineAreas {
+    /// Lengths and net areas of the lines of group `twines` from the panels of group `panels`.
+    /// Each panel is cut into triangles from its vertex centroid to its edges, scaled so that
+    /// they add up to the panel's area ([`Mesh::panel_area`]); the triangle on an edge goes to
+    /// the twine along that edge. The area of an edge that is no twine is shared by all twines
+    /// that carry area, in proportion to their length.
+    pub fn of(mesh: &Mesh, twines: usize, panels: Option<usize>) -> Self {
+        let lines = &mesh.groups[twines].lines;
+        let lengths: Vec<f64> = lines.iter().map(|&e| mesh.line_length(e)).collect();
+        let mut areas = vec![None::<f64>; lines.len()];
+        let key = |a: usize, b: usize| (a.min(b), a.max(b));
+        let edge: HashMap<(usize, usize), usize> = lines
+            .iter()
+            .enumerate()
+            .map(|(k, &e)| (key(mesh.lines[e].nodes[0], mesh.lines[e].nodes[1]), k))
+            .collect();
+        let mut net_area = 0.0;
+        let mut orphan = 0.0;
+        for &p in panels.map_or(&[][..], |g| &mesh.groups[g].panels) {
+            let corners: &[usize] = match &mesh.panels[p].nodes {
+                PanelNodes::Tri(n) => n,
+                PanelNodes::Quad(n) => n,
+            };
+            let k = corners.len();
+            let c = corners
+                .iter()
+                .fold(nalgebra::Vector3::zeros(), |a, &n| a + mesh.nodes[n].coords)
+                / k as f64;
+            let tri: Vec<f64> = (0..k)
+                .map(|j| {
+                    let (a, b) = (
+                        mesh.nodes[corners[j]].coords,
+                        mesh.nodes[corners[(j + 1) % k]].coords,
+                    );
+                    0.5 * (a - c).cross(&(b - c)).norm()
+                })
+                .collect();
+            let area = mesh.panel_area(p);
+            let sum: f64 = tri.iter().sum();
+            if sum <= 0.0 {
+                continue;
+            }
+            net_area += area;
+            for (j, t) in tri.iter().enumerate() {
+                let share = t * area / sum;
+                match edge.get(&key(corners[j], corners[(j + 1) % k])) {
+                    Some(&i) => *areas[i].get_or_insert(0.0) += share,
+                    None => orphan += share,
+                }
+            }
+        }
+        if orphan > 0.0 {
+            let carried: f64 = lengths
+                .iter()
+                .zip(&areas)
+                .filter(|(_, a)| a.is_some())
+                .map(|(l, _)| l)
+                .sum();
+            for (l, a) in lengths.iter().zip(areas.iter_mut()) {
+                if let Some(a) = a {
+                    *a += orphan * l / carried;
+                }
+            }
+        }
+        TwineAreas {
+            lengths,
+            areas,
+            net_area,
+        }
+    }
+}
+
 impl NetResolved {
-    /// Mesh grouping from the mean as-built twine element length [m]
-    /// (docs/theory/cages.md#mesh-grouping). λ < 1 is an error; λ > 500 a warning pushed to
-    /// `notices`.
+    /// Mesh grouping of a net (docs/theory/cages.md#mesh-grouping): the grouping numbers and
+    /// each twine's λ_e/λ̄ ([`crate::LineElement::section_scale`]). With `net.grouping_ratio`
+    /// every twine has the given λ; a twine on no panel edge (or a net without panels) has
+    /// λ = L̄/l_p. λ̄ < 1 is an error; λ̄ > 500 a warning pushed to `notices`.
     pub fn grouping(
         &self,
         object: &str,
-        mean_twine_length: f64,
+        twines: &TwineAreas,
+        size: &str,
         notices: &mut Vec<String>,
-    ) -> Result<NetGrouping> {
-        let (lambda, given) = match self.grouping_ratio {
-            Some(g) => (g, true),
-            None => (mean_twine_length / self.half_mesh, false),
+    ) -> Result<(NetGrouping, Vec<f64>)> {
+        let n = twines.lengths.len().max(1) as f64;
+        let total: f64 = twines.lengths.iter().sum();
+        let mean_twine_length = total / n;
+        let lp = self.half_mesh;
+        let lambdas: Vec<f64> = twines
+            .lengths
+            .iter()
+            .zip(&twines.areas)
+            .map(|(&l, a)| match (self.grouping_ratio, a) {
+                (Some(g), _) => g,
+                (None, Some(a)) if *a > 0.0 && l > 0.0 => 2.0 * a / (lp * l),
+                (None, _) => mean_twine_length / lp,
+            })
+            .collect();
+        let lambda = if total > 0.0 {
+            lambdas
+                .iter()
+                .zip(&twines.lengths)
+                .map(|(g, l)| g * l)
+                .sum::<f64>()
+                / total
+        } else {
+            f64::NAN
         };
         if !(lambda.is_finite() && lambda >= 1.0) {
             return Err(MeshError::param(
@@ -220,9 +334,19 @@ impl NetResolved {
                 "net.half_mesh",
                 self.half_mesh,
                 format!(
-                    "gives grouping ratio λ = mean twine element length {mean_twine_length:.6} m / \
-                     half_mesh = {lambda:.4} < 1 (a numerical twine would be shorter than a real \
-                     one); use a longer element_length or set net.grouping_ratio"
+                    "gives grouping ratio λ = {lambda:.4} < 1 (a numerical twine, of mean length \
+                     {mean_twine_length:.6} m, would carry less than one real twine{}); use a \
+                     longer element_length or set net.grouping_ratio",
+                    if twines.net_area > 0.0 {
+                        format!(
+                            ": the net's {:.6e} m² from {size} hold {:.6e} m of twine, the mesh \
+                             {total:.6e} m",
+                            twines.net_area,
+                            2.0 * twines.net_area / lp
+                        )
+                    } else {
+                        String::new()
+                    }
                 ),
             ));
         }
@@ -232,20 +356,55 @@ impl NetResolved {
                  shorter element_length"
             ));
         }
+        let unpaneled = twines.areas.iter().filter(|a| a.is_none()).count();
+        if self.grouping_ratio.is_none() && twines.net_area > 0.0 && unpaneled > 0 {
+            notices.push(format!(
+                "notice: {object}: {unpaneled} net twine(s) lie on no net panel edge and carry \
+                 λ = mean twine length / half_mesh"
+            ));
+        }
+        let range = lambdas
+            .iter()
+            .fold([f64::INFINITY, 0.0_f64], |r, &g| [r[0].min(g), r[1].max(g)]);
         let s = lambda.sqrt() * self.twine_diameter;
-        Ok(NetGrouping {
+        let grouping = NetGrouping {
             twine_diameter: self.twine_diameter,
             half_mesh: self.half_mesh,
             solidity: self.solidity,
             mean_twine_length,
+            net_area: twines.net_area,
             lambda,
-            lambda_given: given,
+            lambda_range: range,
+            lambda_given: self.grouping_ratio.is_some(),
             structural_diameter: s,
             elastic_diameter: s,
             hydro_diameter: lambda * self.twine_diameter,
             youngs_modulus: self.youngs_modulus,
             density: self.density,
-        })
+        };
+        Ok((grouping, lambdas.iter().map(|g| g / lambda).collect()))
+    }
+
+    /// Groups the net of the builder's object (copy 0): the twines of group `twines` carry the
+    /// net area of the panels of group `panels`; sets each twine's section scale and returns
+    /// the grouping. `size` names the keys the net's size comes from (for messages). The
+    /// caller sets the group's section.
+    pub(crate) fn group_net(
+        &self,
+        b: &mut MeshBuilder,
+        object: &str,
+        twines: usize,
+        panels: Option<usize>,
+        size: &str,
+        notices: &mut Vec<String>,
+    ) -> Result<NetGrouping> {
+        let areas = TwineAreas::of(&b.mesh, twines, panels);
+        let (grouping, scales) = self.grouping(object, &areas, size, notices)?;
+        for (k, s) in scales.into_iter().enumerate() {
+            let e = b.mesh.groups[twines].lines[k];
+            b.mesh.lines[e].section_scale = s;
+        }
+        Ok(grouping)
     }
 }
 
@@ -253,13 +412,43 @@ impl NetResolved {
 mod tests {
     use super::*;
 
+    /// Two twines of length `l` on no panel: λ = l / l_p.
+    fn unpaneled(l: f64) -> TwineAreas {
+        TwineAreas {
+            lengths: vec![l, l],
+            areas: vec![None, None],
+            net_area: 0.0,
+        }
+    }
+
+    #[test]
+    fn twine_of_the_net_area() {
+        // Twines of 2 m and 1 m carrying 3 m² and 1 m²: λ_e = 2·A_e/(l_p·L_e); the mean is
+        // weighted by length and the scales are λ_e/λ̄.
+        let net = NetParams::default().resolve("t", &mut vec![]).unwrap();
+        let lp = DEFAULT_HALF_MESH;
+        let t = TwineAreas {
+            lengths: vec![2.0, 1.0],
+            areas: vec![Some(3.0), Some(1.0)],
+            net_area: 4.0,
+        };
+        let (g, s) = net.grouping("t", &t, "", &mut vec![]).unwrap();
+        let (l0, l1) = (3.0 / lp, 2.0 / lp);
+        let mean = (l0 * 2.0 + l1) / 3.0;
+        assert!((g.lambda - mean).abs() < 1e-9 * mean);
+        assert!((s[0] - l0 / mean).abs() < 1e-12 && (s[1] - l1 / mean).abs() < 1e-12);
+        // Twine length carried: Σ λ_e·L_e = 2·A/l_p.
+        assert!((g.lambda * 3.0 - 2.0 * 4.0 / lp).abs() < 1e-9);
+    }
+
     #[test]
     fn worked_case_diameters() {
-        // docs/theory/cages.md#mesh-grouping: λ = 81.11, dw0 = 2.85 mm -> dws = 0.02567 m, dwh =
-        // 0.2312 m.
+        // Twines on no panel, λ = L̄/l_p = 81.11 (the mean-length rule of
+        // docs/theory/cages.md#mesh-grouping), dw0 = 2.85 mm -> dws = √λ·dw0 = 0.02567 m,
+        // dwh = λ·dw0 = 0.2312 m.
         let net = NetParams::default().resolve("t", &mut vec![]).unwrap();
-        let g = net
-            .grouping("t", 81.11 * DEFAULT_HALF_MESH, &mut vec![])
+        let (g, _) = net
+            .grouping("t", &unpaneled(81.11 * DEFAULT_HALF_MESH), "", &mut vec![])
             .unwrap();
         assert!((g.structural_diameter - 0.02567).abs() / 0.02567 < 1e-3);
         assert!((g.hydro_diameter - 0.2312).abs() / 0.2312 < 1e-3);
@@ -289,9 +478,9 @@ mod tests {
         n.resolve("cage0", &mut notes).unwrap();
         assert_eq!(notes.len(), 1);
         let r = NetParams::default().resolve("c", &mut vec![]).unwrap();
-        assert!(r.grouping("c", 0.01, &mut vec![]).is_err());
+        assert!(r.grouping("c", &unpaneled(0.01), "", &mut vec![]).is_err());
         let mut notes = vec![];
-        r.grouping("c", 600.0 * DEFAULT_HALF_MESH, &mut notes)
+        r.grouping("c", &unpaneled(600.0 * DEFAULT_HALF_MESH), "", &mut notes)
             .unwrap();
         assert_eq!(notes.len(), 1);
     }

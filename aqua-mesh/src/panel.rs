@@ -265,8 +265,11 @@ impl PanelParams {
                 });
             }
         }
-        let mean = b.mean_length(g_tw);
-        let grouping = net.grouping(obj, mean, &mut notices)?;
+        let size = format!(
+            "`width` = {} m and `height` = {} m",
+            self.width, self.height
+        );
+        let grouping = net.group_net(&mut b, obj, g_tw, Some(g_pa), &size, &mut notices)?;
         let mut tw = grouping.twine_section();
         if let Some(o) = self.groups.get("net_twines") {
             o.apply(obj, "groups.net_twines", &mut tw)?;

@@ -271,10 +271,12 @@ pub fn write_vtu(
         role_id.push(g.role.id() as i32);
         object_id.push(l.object as i32);
         copy_id.push(l.copy as i32);
+        // The element's own diameters: its section scale multiplies areas.
         let s = g.section.as_ref();
-        d.push(s.map_or(0.0, |s| s.diameter));
-        de.push(s.map_or(0.0, |s| s.elastic_diameter));
-        dh.push(s.map_or(0.0, |s| s.hydro_diameter));
+        let r = l.section_scale.sqrt();
+        d.push(s.map_or(0.0, |s| s.diameter * r));
+        de.push(s.map_or(0.0, |s| s.elastic_diameter * r));
+        dh.push(s.map_or(0.0, |s| s.hydro_diameter * l.section_scale));
         sn.push(0.0);
     }
     for p in &mesh.panels {

@@ -603,15 +603,21 @@ impl BlockTemplate {
                 data_array(&mut s, "Int32", "object_id", 1, &i32_bytes(&o));
                 let cp: Vec<i32> = lines().map(|l| l.copy as i32).collect();
                 data_array(&mut s, "Int32", "copy_id", 1, &i32_bytes(&cp));
-                type Diam = fn(&crate::Section) -> f64;
+                // The element's own diameters: its section scale k multiplies areas.
+                type Diam = fn(&crate::Section, f64) -> f64;
                 let diam: [(&str, Diam); 3] = [
-                    ("diameter", |s| s.diameter),
-                    ("elastic_diameter", |s| s.elastic_diameter),
-                    ("hydro_diameter", |s| s.hydro_diameter),
+                    ("diameter", |s, k| s.diameter * k.sqrt()),
+                    ("elastic_diameter", |s, k| s.elastic_diameter * k.sqrt()),
+                    ("hydro_diameter", |s, k| s.hydro_diameter * k),
                 ];
                 for (name, f) in diam {
                     let d: Vec<f64> = lines()
-                        .map(|l| mesh.groups[l.group].section.as_ref().map_or(0.0, f))
+                        .map(|l| {
+                            mesh.groups[l.group]
+                                .section
+                                .as_ref()
+                                .map_or(0.0, |s| f(s, l.section_scale))
+                        })
                         .collect();
                     data_array(&mut s, "Float64", name, 1, &f64_bytes(&d));
                 }

@@ -95,14 +95,23 @@ fn worked_ssm_geometry_and_grouping() {
     assert!((total - 2820.17).abs() < 0.005, "{total}");
     assert!((no_top - 2700.17).abs() < 0.005, "{no_top}");
 
-    // λ = 81.11, dws = 0.02567, dwh = 0.2312 (relative 1e-3).
+    // Net area: four 30 m × 15 m sides and four triangles of base 30 m and slant height
+    // √(15² + 3²) m: 2717.82 m². The twine of that area, 2·A/l_p, over the 2820.17 m of
+    // numerical twine: λ = 74.50, dws = 0.02460 m, dwh = 0.2123 m (relative 1e-3).
     let g = m.objects[0].net.clone().unwrap();
     let rel = |a: f64, b: f64| ((a - b) / b).abs();
+    let area = 4.0 * 30.0 * 15.0 + 4.0 * 0.5 * 30.0 * (15f64.powi(2) + 9.0).sqrt();
+    assert!(rel(g.net_area, area) < 1e-12, "{}", g.net_area);
     assert!(rel(g.mean_twine_length, 2.09834) < 1e-5);
-    assert!(rel(g.lambda, 81.11) < 1e-3, "{}", g.lambda);
-    assert!(rel(g.structural_diameter, 0.02567) < 1e-3);
-    assert!(rel(g.elastic_diameter, 0.02567) < 1e-3);
-    assert!(rel(g.hydro_diameter, 0.2312) < 1e-3);
+    assert!(
+        rel(g.lambda, 2.0 * area / (25.87e-3 * total)) < 1e-12,
+        "{}",
+        g.lambda
+    );
+    assert!(rel(g.lambda, 74.50) < 1e-3, "{}", g.lambda);
+    assert!(rel(g.structural_diameter, 0.02460) < 1e-3);
+    assert!(rel(g.elastic_diameter, 0.02460) < 1e-3);
+    assert!(rel(g.hydro_diameter, 0.2123) < 1e-3);
     let s = tw.section.as_ref().unwrap();
     assert_eq!(s.diameter, g.structural_diameter);
     assert_eq!(s.hydro_diameter, g.hydro_diameter);
@@ -150,7 +159,7 @@ fn worked_ssm_three_origins() {
         vec![2 * 1057 + 672]
     );
     // λ shared by all copies.
-    assert!((m.objects[0].net.as_ref().unwrap().lambda - 81.11).abs() / 81.11 < 1e-3);
+    assert!((m.objects[0].net.as_ref().unwrap().lambda - 74.50).abs() / 74.50 < 1e-3);
 }
 
 #[test]
@@ -168,7 +177,7 @@ fn defaults_table() {
             144,
             96,
             0,
-            81.11,
+            74.50,
         ),
         (
             CageType::Csm,
@@ -180,7 +189,7 @@ fn defaults_table() {
             144,
             96,
             0,
-            99.83,
+            83.78,
         ),
         (
             CageType::Cct,
@@ -192,7 +201,7 @@ fn defaults_table() {
             48,
             96,
             48,
-            99.83,
+            83.78,
         ),
         (
             CageType::Ccs,
@@ -204,7 +213,7 @@ fn defaults_table() {
             144,
             96,
             0,
-            99.83,
+            83.78,
         ),
     ];
     for (t, (nt, nn, bn), nodes, net, panels, ropes, ties, ring, bottom, lambda) in rows {

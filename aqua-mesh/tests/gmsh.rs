@@ -49,11 +49,12 @@ fn check_fixture(m: &Mesh) {
     // Panel areas: 4×3 + 2×3 = 18 m².
     let area: f64 = (0..m.panels.len()).map(|p| m.panel_area(p)).sum();
     assert!((area - 18.0).abs() < 1e-9);
-    // λ from the mean twine length (45 unit edges, 6 diagonals of √2).
+    // λ: the twine of 18 m² of net, 2·18/l_p, over the numerical twine (45 unit edges, 6
+    // diagonals of √2).
     let net = m.objects[0].net.as_ref().unwrap();
-    let mean = (45.0 + 6.0 * 2f64.sqrt()) / 51.0;
-    assert!((net.mean_twine_length - mean).abs() < 1e-9);
-    assert!((net.lambda - mean / 25.87e-3).abs() < 1e-6);
+    let total = 45.0 + 6.0 * 2f64.sqrt();
+    assert!((net.mean_twine_length - total / 51.0).abs() < 1e-9);
+    assert!((net.lambda - 2.0 * 18.0 / (25.87e-3 * total)).abs() < 1e-6);
     assert_eq!(m.fixed_nodes().len(), 5);
     assert!(
         m.notices

@@ -16,6 +16,9 @@
 //!   a floater's top went more than its own size under the local water surface η(x, y, t),
 //!   `design/float-on-seabed` and `design/on-seabed` when a floater or a net touched the bed;
 //!   each reported once per floater or net with the worst value and its time.
+//! - `design/buoyant-sinker-tube`: a CCT sinker tube (`bottom_ring`, a sealed pipe) whose
+//!   buoyancy, less its own weight, cancels more than half of the sinker weight it carries (at
+//!   check and build time; docs/theory/cages.md#frame-ropes-and-weights).
 //!
 //! - `mesh/coarse-line`: a `[[line]]` (or a farm's anchor line) that sags at static equilibrium
 //!   with fewer segments than the bundled chain's segment ladder needed
@@ -27,6 +30,7 @@
 //! checked against the seabed.
 
 use crate::diagnostic::Diagnostic;
+use aqua_mesh::{Mesh, Role, Section};
 use nalgebra::Point3;
 
 /// Something meant to float: a buoy, or the nodes of a floating pipe group.
@@ -386,6 +390,69 @@ impl DynamicWatch {
     }
 }
 
+/// Share of the sinker weight a sinker tube's net lift may cancel before
+/// `design/buoyant-sinker-tube` warns.
+pub const SINKER_TUBE_LIFT_SHARE: f64 = 0.5;
+
+/// `design/buoyant-sinker-tube` for every sinker tube (`bottom_ring` group) of `mesh`: its net
+/// lift ρ_w·g·π/4·d_v²·L − μ·g·L (d_v its volume diameter, μ its mass per length, L its as-built
+/// length; `sections` with the scene's overrides) against the weights on its cage's `sinkers`.
+pub fn sinker_tubes(
+    mesh: &Mesh,
+    sections: &[Option<(aqua_fem::GroupId, Section)>],
+    water_density: f64,
+    gravity: f64,
+) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for (gi, g) in mesh.groups.iter().enumerate() {
+        if g.role != Role::BottomRing {
+            continue;
+        }
+        let Some((_, s)) = sections.get(gi).and_then(|s| s.as_ref()) else {
+            continue;
+        };
+        let area = std::f64::consts::FRAC_PI_4 * s.volume_diameter.powi(2);
+        let lift_per_metre = (water_density * area - s.linear_mass()) * gravity;
+        let length: f64 = g
+            .lines
+            .iter()
+            .map(|&e| mesh.line_length(e) * mesh.lines[e].section_scale)
+            .sum();
+        let lift = lift_per_metre * length;
+        let weight: f64 = mesh
+            .weights
+            .iter()
+            .filter(|w| {
+                let wg = &mesh.groups[w.group];
+                wg.object == g.object && wg.role == Role::Sinkers
+            })
+            .map(|w| w.weight)
+            .sum();
+        if weight > 0.0 && lift > SINKER_TUBE_LIFT_SHARE * weight {
+            let name = format!("{}/{}", mesh.objects[g.object as usize].name, g.name);
+            out.push(Diagnostic::warning(
+                "design/buoyant-sinker-tube",
+                &name,
+                format!(
+                    "the sinker tube '{name}' is a sealed pipe (volume diameter {:.3} m, {:.1} kg/m) \
+                     that lifts {lift_per_metre:.1} N/m: {:.1} kN over its {length:.1} m, {:.0} % of \
+                     the {:.1} kN sinker weight it carries, so only {:.1} kN holds the net down \
+                     (docs/theory/cages.md#frame-ropes-and-weights). If that is not the design, \
+                     raise `sinker_weight_per_metre` or set `groups.bottom_ring` (a flooded tube: \
+                     `volume_diameter` of its wall, or a `mass_per_length` with the ballast)",
+                    s.volume_diameter,
+                    s.linear_mass(),
+                    lift / 1e3,
+                    100.0 * lift / weight,
+                    weight / 1e3,
+                    (weight - lift) / 1e3,
+                ),
+            ));
+        }
+    }
+    out
+}
+
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
@@ -393,6 +460,42 @@ fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The default CCT sinker tube (sealed 0.25 m HDPE pipe, 0.0185 m wall, 958 kg/m³) lifts
+    /// (ρ_w·π/4·D² − μ)·g over its 48 chords at radius R_t + f: more than half of the default
+    /// 392.4 N/m × 120 m of sinkers. Four times the sinker weight does not warn.
+    #[test]
+    fn buoyant_sinker_tube_warns() {
+        let (rho, g) = (1025.0, 9.80665);
+        let tube = |w: f64| {
+            let mut p = aqua_mesh::CageParams::new(aqua_mesh::CageType::Cct);
+            p.sinker_weight_per_metre = Some(w);
+            let m = p.build().unwrap();
+            let sections: Vec<_> = m
+                .groups
+                .iter()
+                .map(|gr| gr.section.clone().map(|s| (aqua_fem::GroupId(0), s)))
+                .collect();
+            sinker_tubes(&m, &sections, rho, g)
+        };
+        let d = tube(392.4);
+        assert_eq!(d.len(), 1);
+        assert_eq!(d[0].code, "design/buoyant-sinker-tube");
+        // Independent numbers: lift per metre and the tube's length 48·2(R+1)·sin(π/48).
+        let area = |d: f64| std::f64::consts::FRAC_PI_4 * d * d;
+        let mu = 958.0 * (area(0.25) - area(0.25 - 2.0 * 0.0185));
+        let lift = (rho * area(0.25) - mu) * g;
+        let r = 120.0 / (2.0 * std::f64::consts::PI) + 1.0;
+        let length = 48.0 * 2.0 * r * (std::f64::consts::PI / 48.0).sin();
+        let share = lift * length / (392.4 * 120.0);
+        assert!((lift - 367.0).abs() < 0.5, "{lift}");
+        assert!(
+            d[0].message.contains(&format!("{:.0} %", 100.0 * share)),
+            "{}",
+            d[0].message
+        );
+        assert!(tube(4.0 * 392.4).is_empty());
+    }
 
     fn checks() -> DesignChecks {
         DesignChecks {

@@ -345,9 +345,9 @@ pub fn report_with(
         );
         if let Some(c) = &o.counts {
             println!(
-                "  NT = {}, NN = {}, BN = {}, extension segments = {}; R_top = {:.4} m, \
-                 R_bottom = {:.4} m",
-                c.nt, c.nn, c.bn, c.n_ext, c.top_radius, c.bottom_radius
+                "  NT = {}, NN = {}, BN = {}, extension segments = {}, ropes = {}; R_top = {:.4} \
+                 m, R_bottom = {:.4} m",
+                c.nt, c.nn, c.bn, c.n_ext, c.ropes, c.top_radius, c.bottom_radius
             );
             println!(
                 "  element lengths: ring {:.4} m, side {:.4} m, cone {:.4} m",
@@ -356,13 +356,16 @@ pub fn report_with(
         }
         if let Some(n) = &o.net {
             println!(
-                "  net: dw0 = {} m, l_p = {} m, Sn = {:.4}, mean twine element {:.5} m",
-                n.twine_diameter, n.half_mesh, n.solidity, n.mean_twine_length
+                "  net: dw0 = {} m, l_p = {} m, Sn = {:.4}, mean twine element {:.5} m, area {:.2} \
+                 m²",
+                n.twine_diameter, n.half_mesh, n.solidity, n.mean_twine_length, n.net_area
             );
             println!(
-                "  λ = {:.2}{}, dws = {:.5} m, dwe = {:.5} m, dwh = {:.4} m",
+                "  λ = {:.2}{} (elements {:.2} to {:.2}), dws = {:.5} m, dwe = {:.5} m, dwh = {:.4} m",
                 n.lambda,
                 if n.lambda_given { " (given)" } else { "" },
+                n.lambda_range[0],
+                n.lambda_range[1],
                 n.structural_diameter,
                 n.elastic_diameter,
                 n.hydro_diameter

@@ -552,7 +552,12 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
     let net = match tw_group {
         Some(g) if !b.mesh.groups[g].lines.is_empty() => {
             let resolved = params.net.resolve(obj, &mut notices)?;
-            let grouping = resolved.grouping(obj, b.mean_length(g), &mut notices)?;
+            let panels = b.mesh.groups.iter().position(|g| g.role == Role::NetPanels);
+            let size = format!(
+                "the file's `net` faces (`scale` = {})",
+                params.scale.unwrap_or(1.0)
+            );
+            let grouping = resolved.group_net(&mut b, obj, g, panels, &size, &mut notices)?;
             let mut s = grouping.twine_section();
             if let Some(o) = params.groups.get("net_twines") {
                 o.apply(obj, "groups.net_twines", &mut s)?;

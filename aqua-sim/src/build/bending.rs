@@ -105,6 +105,7 @@ mod tests {
                     object: 0,
                     copy: 0,
                     rest_length: None,
+                    section_scale: 1.0,
                 })
                 .collect(),
             ..Default::default()

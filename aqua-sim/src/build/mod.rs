@@ -179,6 +179,12 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         nets: net_nodes(&mesh),
     };
     diagnostics.extend(design.as_built(&mesh.nodes));
+    diagnostics.extend(crate::design::sinker_tubes(
+        &mesh,
+        &st.sections,
+        model.environment().water_density,
+        model.environment().gravity,
+    ));
     let supported_nodes: Vec<usize> = st.supported.into_iter().collect();
     let mut line_ends = line_ends;
     for le in &mut line_ends {

@@ -222,7 +222,7 @@ fn add_cables(
                 initial_tension: section.initial_tension,
             },
         };
-        b.add_cable(l.nodes[0], l.nodes[1], *gid, len)
+        b.add_scaled_cable(l.nodes[0], l.nodes[1], *gid, len, l.section_scale)
             .map_err(|err| SimError::at(format!("{file}: element {e}"), err))?;
     }
     Ok(())

@@ -254,10 +254,14 @@ fn morison_lines(
         });
         let props = line_props(&h, section, net)
             .map_err(|err| hydro_err(&file, &format!("{}/{}", obj.name, g.name), err))?;
+        // An element standing for `section_scale` sections has that multiple of the drag
+        // area and of the displaced volume (docs/theory/cages.md#mesh-grouping).
         lines.push(HydroLine {
             nodes: l.nodes,
             props: LineProps {
                 rest_length: l.rest_length.unwrap_or_else(|| mesh.line_length(e)),
+                hydro_diameter: props.hydro_diameter * l.section_scale,
+                volume_diameter: props.volume_diameter * l.section_scale.sqrt(),
                 ..props
             },
             net_twine: twine,
