@@ -100,6 +100,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod seabed;
 pub mod state;
 pub mod statics;
 mod symmetric;

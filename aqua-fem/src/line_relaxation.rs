@@ -28,7 +28,8 @@
 
 use crate::cable;
 use crate::model::{Cable, Model};
-use crate::system::{BedLaw, Coef, NONE, System, norm, sub};
+use crate::seabed::BedLaw;
+use crate::system::{Coef, NONE, System, norm, sub};
 use nalgebra::{Matrix3, Vector3};
 
 /// Local Newton iterations per line and global iteration.

@@ -7,6 +7,7 @@ use crate::cable;
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;
 use crate::model::Model;
+use crate::seabed::BedLaw;
 use crate::state::{Outputs, State};
 use crate::system::{Coef, EvalOptions, System};
 use serde::{Deserialize, Serialize};
@@ -299,15 +300,13 @@ pub(crate) fn check_supported<P: LoadProvider + ?Sized>(
     let n = model.n_nodes();
     let mut held = vec![false; n];
     provider.mark_restoring_nodes(&mut held);
-    let seabed = model.env.seabed.is_some();
+    let bed = BedLaw::new(model, false);
     let mut comp_held = vec![false; n];
     let mut comp_size = vec![0usize; n];
     for i in 0..n {
         let r = part[i];
         comp_size[r] += 1;
-        let c = (0..3).any(|k| model.is_constrained(i, k))
-            || held[i]
-            || (seabed && (model.bed_coef[i] > 0.0 || model.bed_point[i] > 0.0));
+        let c = (0..3).any(|k| model.is_constrained(i, k)) || held[i] || bed.acts_on(model, i);
         comp_held[r] |= c;
     }
     for i in 0..n {
@@ -381,13 +380,12 @@ fn check_held_up<P: LoadProvider + ?Sized>(
     if !provider.max_buoyancy(&mut lift) {
         return Ok(());
     }
-    let seabed = model.env.seabed.is_some();
+    let bed = BedLaw::new(model, false);
     let mut held = vec![false; n];
     let (mut down, mut up) = (vec![0.0f64; n], vec![0.0f64; n]);
     for i in 0..n {
         let r = part[i];
-        held[r] |= model.is_constrained(i, 2)
-            || (seabed && (model.bed_coef[i] > 0.0 || model.bed_point[i] > 0.0));
+        held[r] |= model.is_constrained(i, 2) || bed.acts_on(model, i);
         down[r] -= model.weight[i][2] + model.point_force[i][2];
         up[r] += lift[i];
     }
@@ -736,15 +734,10 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             dw += cable::strain_energy(e, (c.length - e.l0) / e.l0)
                 - cable::strain_energy(e, (l_x - e.l0) / e.l0);
         }
-        if let Some(bed) = self.model.env.seabed {
-            let zs = -bed.depth;
+        if self.model.env.seabed.is_some() {
+            let bed = BedLaw::new(self.model, false);
             for i in 0..self.model.n_nodes() {
-                let k = bed.stiffness * self.model.bed_coef[i] + self.model.bed_point[i];
-                if k > 0.0 {
-                    let d1 = (zs - self.x_trial[i][2]).max(0.0);
-                    let d0 = (zs - x0[i][2]).max(0.0);
-                    dw += 0.5 * k * (d1 - d0) * (d1 + d0);
-                }
+                dw += bed.energy_change(self.model, i, x0[i][2], self.x_trial[i][2]);
             }
         }
         let mut work = 0.0;
