@@ -25,13 +25,13 @@ pub struct Energies {
     pub numerical_dissipation: f64,
 }
 
+/// The step-control reason (a key of [`StepControl::reasons`](super::StepControl::reasons)) of
+/// a step rejected because it created energy (docs/theory/fem.md#step-control).
+pub const ENERGY_CREATED: &str = "the step created energy";
+
 /// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
 /// HHT-α (α ≥ 0) only dissipates in linear problems; growth beyond round-off and the
 /// trapezoidal work of state-dependent loads means the step left the physics.
-/// The step-control reason (a key of [`StepControl::reasons`]) of a step rejected because it
-/// created energy (docs/theory/fem.md#step-control).
-pub const ENERGY_CREATED: &str = "the step created energy";
-
 pub const ENERGY_GROWTH_TOL: f64 = 0.01;
 
 /// The energy terms of one step (see `DynamicSolver::balance`).

@@ -212,8 +212,7 @@ impl<'m> DynamicSolver<'m> {
             guarded: None,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
-        for (f, &gd) in s.sys.dof_of_free.iter().enumerate() {
-            let _ = f;
+        for &gd in &s.sys.dof_of_free {
             s.state.a[gd / 3][gd % 3] = 0.0;
         }
         let o = s.opts(
