@@ -5,6 +5,7 @@ use crate::dynamics::{Energies, StepReport};
 use crate::error::{FemError, Result, invalid};
 use crate::loads::LoadProvider;
 use crate::model::Model;
+use crate::seabed::BedLaw;
 use crate::state::{Outputs, State};
 use crate::system::{Coef, EvalOptions, System};
 use serde::{Deserialize, Serialize};
@@ -244,14 +245,16 @@ impl<'m> ExplicitSolver<'m> {
         let mut k_bend = vec![0.0; n];
         self.sys.add_hinge_row_sums(model, &mut k_bend);
         let c_rows = self.sys.row_abs_sums();
-        let kb = model.env.seabed.map(|s| s.stiffness).unwrap_or(0.0);
+        let bed = BedLaw::new(model, true);
         let mut dt = f64::INFINITY;
         for i in 0..n {
             if (0..3).all(|k| model.is_constrained(i, k)) {
                 continue;
             }
             let m = model.lumped_mass[i];
-            let w2 = (2.0 * k_sum[i] + k_bend[i] + kb * model.bed_coef[i] + model.bed_point[i]) / m;
+            // The seabed's contact stiffness (docs/theory/fem.md#seabed-contact).
+            let (k_line, k_point) = bed.stiffness_parts(model, i);
+            let w2 = (2.0 * k_sum[i] + k_bend[i] + k_line + k_point) / m;
             if w2 > 0.0 {
                 dt = dt.min(2.0 / w2.sqrt());
             }

@@ -70,6 +70,17 @@
 //! every Newton step is J's own; the LU takes over where the refinement does not contract
 //! (docs/theory/fem.md#sparse-linear-algebra).
 //!
+//! ## Files
+//! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
+//! `bending.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
+//! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
+//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `load_derivatives.rs`,
+//! `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
+//! (`mod.rs` the solver, `settings.rs`, `support.rs` the checks before a solve);
+//! `dynamics/` (`settings.rs`, `step_control.rs`, `energy.rs`, `newton.rs`, and one file per
+//! time scheme, `hht.rs` and `midpoint.rs`, dispatched by `scheme.rs`);
+//! `line_relaxation.rs`; `explicit.rs`.
+//!
 //! ## Use
 //! ```
 //! use aqua_fem::*;
@@ -100,6 +111,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod seabed;
 pub mod state;
 pub mod statics;
 mod symmetric;

@@ -27,8 +27,10 @@
 //! x^{k+1}.
 
 use crate::cable;
+use crate::dynamics::{ForceEvaluation, Scheme};
 use crate::model::{Cable, Model};
-use crate::system::{BedLaw, Coef, NONE, System, norm, sub};
+use crate::seabed::BedLaw;
+use crate::system::{Coef, NONE, System, norm, sub};
 use nalgebra::{Matrix3, Vector3};
 
 /// Local Newton iterations per line and global iteration.
@@ -58,10 +60,9 @@ struct Line {
 /// The kinematics of the step that turn x_{n+1} into the state the equations are evaluated
 /// at.
 pub(crate) struct StepKinematics<'a> {
-    pub midpoint: bool,
+    /// The time scheme: its kinematics and how it evaluates the step's forces.
+    pub scheme: &'a Scheme,
     pub h: f64,
-    pub beta: f64,
-    pub gamma: f64,
     pub xn: &'a [[f64; 3]],
     pub vn: &'a [[f64; 3]],
     pub an: &'a [[f64; 3]],
@@ -296,8 +297,9 @@ impl LineRelaxation {
         // local solves made Newton fail on a chain landing on the bed
         // (docs/theory/fem.md#line-relaxation-seabed).
         let bed_nodes: &[usize] = &[];
+        let gradient = kin.scheme.force_evaluation() == ForceEvaluation::DiscreteGradient;
         for line in &self.lines {
-            let bed_nodes = if kin.midpoint { bed_nodes } else { &line.bed };
+            let bed_nodes = if gradient { bed_nodes } else { &line.bed };
             let ctx = Ctx {
                 line,
                 elements,
@@ -396,17 +398,7 @@ impl Ctx<'_, '_> {
                 continue;
             }
             let (xn, vn, an) = (kin.xn[i][k], kin.vn[i][k], kin.an[i][k]);
-            let h = kin.h;
-            if kin.midpoint {
-                // v_m = (1 − θ)·v_n + θ·v_{n+1} with v_{n+1} = (x_{n+1} − x_n)/(θh) − (1 − θ)/θ·v_n
-                // is (x_{n+1} − x_n)/h for every θ (½ for the plain rule).
-                xe[k] = 0.5 * (xn + xi[k]);
-                ve[k] = (xi[k] - xn) / h;
-            } else {
-                let a = (xi[k] - xn - h * vn) / (kin.beta * h * h) - (0.5 / kin.beta - 1.0) * an;
-                xe[k] = xi[k];
-                ve[k] = vn + h * ((1.0 - kin.gamma) * an + kin.gamma * a);
-            }
+            (xe[k], ve[k]) = kin.scheme.evaluation_point(xn, vn, an, xi[k], kin.h);
         }
         (xe, ve)
     }
@@ -419,7 +411,7 @@ impl Ctx<'_, '_> {
         let (xea, vea) = self.eval_state(e.a, xa);
         let (xeb, veb) = self.eval_state(e.b, xb);
         let mut ev = cable::evaluate(e, xea, xeb, vea, veb, true, kin.a_k * e.ea, kin.clamp);
-        if kin.midpoint {
+        if kin.scheme.force_evaluation() == ForceEvaluation::DiscreteGradient {
             let l0 = norm(sub(kin.xn[e.b], kin.xn[e.a]));
             cable::use_secant_tension(e, l0, sub(xb, xa), &mut ev);
         }
@@ -437,7 +429,8 @@ impl Ctx<'_, '_> {
     /// as `System::evaluate` and `assemble_jacobian` form them.
     fn bed_linear(&self, i: usize, xi: [f64; 3]) -> (f64, f64) {
         let (xe, ve) = self.eval_state(i, xi);
-        let secant = self.kin.midpoint.then(|| (self.kin.xn[i][2], xi[2]));
+        let gradient = self.kin.scheme.force_evaluation() == ForceEvaluation::DiscreteGradient;
+        let secant = gradient.then(|| (self.kin.xn[i][2], xi[2]));
         let (f, kz, cz) = self.bed.node(self.model, i, xe[2], ve[2], secant);
         (-f, self.kin.coef.k * kz + self.kin.coef.c * cz)
     }

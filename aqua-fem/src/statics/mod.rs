@@ -3,152 +3,19 @@
 //! line search on that merit, load continuation only when a full-load solve fails, and a
 //! round-off convergence floor (docs/theory/fem.md#static-solver).
 
+mod settings;
+mod support;
+
+pub use settings::{StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution};
+use support::{check_held_horizontally, check_held_up, check_supported, parts};
+
 use crate::cable;
-use crate::error::{FemError, Result, invalid};
+use crate::error::{FemError, Result};
 use crate::loads::LoadProvider;
 use crate::model::Model;
+use crate::seabed::BedLaw;
 use crate::state::{Outputs, State};
 use crate::system::{Coef, EvalOptions, System};
-use serde::{Deserialize, Serialize};
-
-/// Settings of the static solver (scene keys of `[analysis.static]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct StaticSettings {
-    /// Relative force tolerance ε_r (‖r‖₂ ≤ ε_r·F_ref). Default 1e-6.
-    pub tol: f64,
-    /// Newton iterations (factorisations) per load increment. Default 500.
-    pub max_iter: usize,
-    /// Initial number of load increments (Δs0 = 1/load_steps). Default 1: the full load at
-    /// once, halved only if that solve fails.
-    pub load_steps: usize,
-    /// Smallest load increment before failing. Default 1e-4.
-    pub min_load_step: f64,
-    /// Initial Levenberg–Marquardt damping μ0, relative to Σ EA/L0 at each node (0: start
-    /// undamped). Default 1e-3. μ then adapts; it does not change the answer.
-    pub stabilisation: f64,
-    /// Backtracking along a rejected step on the energy merit before μ is raised. Default true
-    /// (the reference cage needs 121 iterations with it, 362 without;
-    /// docs/theory/fem.md#static-solver).
-    pub line_search: bool,
-    /// Watchdog: a full step that the merit rejects is taken on trial and kept if, after the
-    /// next step, the merit at the first iterate has fallen. Default true
-    /// (docs/theory/fem.md#watchdog).
-    pub watchdog: bool,
-    /// Time at which loads and prescribed offsets are evaluated [s]. Default 0.
-    pub time: f64,
-    /// Form missing water-load position derivatives by finite differences. Default true.
-    pub fd_position_jacobian: bool,
-}
-
-impl Default for StaticSettings {
-    fn default() -> Self {
-        Self {
-            tol: 1e-6,
-            max_iter: 500,
-            load_steps: 1,
-            min_load_step: 1e-4,
-            stabilisation: 1e-3,
-            line_search: true,
-            watchdog: true,
-            time: 0.0,
-            fd_position_jacobian: true,
-        }
-    }
-}
-
-impl StaticSettings {
-    fn validate(&self) -> Result<()> {
-        if !(self.tol.is_finite() && self.tol > 0.0 && self.tol < 1.0) {
-            return Err(invalid("static tol", self.tol, "0 < tol < 1"));
-        }
-        if self.max_iter == 0 {
-            return Err(invalid("static max_iter", 0.0, ">= 1"));
-        }
-        if self.load_steps == 0 {
-            return Err(invalid("static load_steps", 0.0, ">= 1"));
-        }
-        if !(self.min_load_step > 0.0 && self.min_load_step <= 1.0) {
-            return Err(invalid(
-                "static min_load_step",
-                self.min_load_step,
-                "0 < value <= 1",
-            ));
-        }
-        if !(self.stabilisation.is_finite() && self.stabilisation >= 0.0) {
-            return Err(invalid("static stabilisation", self.stabilisation, ">= 0"));
-        }
-        if !self.time.is_finite() {
-            return Err(invalid("static time [s]", self.time, "finite"));
-        }
-        Ok(())
-    }
-}
-
-/// What the static solve did.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct StaticReport {
-    /// Accepted load increments, the re-solves after a wake change included.
-    pub increments: usize,
-    /// Rejected (halved) increments.
-    pub rejected_increments: usize,
-    /// Total Newton iterations (factorisations).
-    pub iterations: usize,
-    /// Iterations whose step the merit rejected (μ raised, refactorised).
-    pub rejected_steps: usize,
-    /// Steps accepted only after backtracking.
-    pub backtracked_steps: usize,
-    /// ‖r‖/F_ref per iteration of the last Newton solve.
-    pub last_residual_history: Vec<f64>,
-    /// Final ‖r‖/F_ref.
-    pub relative_residual: f64,
-    /// Round-off level of ‖r‖ relative to F_ref at the solution: the solver stops there even
-    /// if `tol` asks for less.
-    pub noise_level: f64,
-    /// Reference force F_ref [N].
-    pub f_ref: f64,
-    /// ‖r‖/F_ref at every Newton iterate of every increment, in order.
-    pub residual_history: Vec<f64>,
-    /// The observer stopped the solve: the state is the last accepted one, not an equilibrium.
-    pub interrupted: bool,
-    /// Load factor s of the returned state (1 = full load; below 1 only when the solve was
-    /// interrupted during load continuation).
-    pub load_factor: f64,
-    /// Warnings (logged by the caller).
-    pub warnings: Vec<String>,
-}
-
-/// One Newton iteration of the static solve, as reported to an observer.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StaticProgress {
-    /// Load factor being solved for (1 = full load).
-    pub load_factor: f64,
-    /// Levenberg–Marquardt damping μ of the next step.
-    pub damping: f64,
-    /// Newton iterations so far.
-    pub iteration: usize,
-    /// ‖r‖/F_ref at this iterate.
-    pub relative_residual: f64,
-}
-
-/// What an observer tells the static solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StaticControl {
-    /// Go on.
-    Continue,
-    /// Stop now and return the last accepted state with `report.interrupted`.
-    Stop,
-}
-
-/// Result of a static solve.
-#[derive(Debug, Clone, PartialEq)]
-pub struct StaticSolution {
-    /// Equilibrium state (v = a = 0).
-    pub state: State,
-    /// Tensions, strains, reactions, ...
-    pub outputs: Outputs,
-    /// Solver statistics.
-    pub report: StaticReport,
-}
 
 /// Failure of one Newton solve.
 struct NewtonFail {
@@ -256,154 +123,6 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     progress: StaticProgress,
     history: Vec<f64>,
     observer: &'o mut dyn FnMut(&StaticProgress) -> StaticControl,
-}
-
-/// The connected parts of the structure (joined by cable and load elements): the lowest
-/// node index of each node's part.
-fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
-    let n = model.n_nodes();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    let union = |p: &mut Vec<usize>, a: usize, b: usize| {
-        let (ra, rb) = (find(p, a), find(p, b));
-        if ra != rb {
-            p[ra.max(rb)] = ra.min(rb);
-        }
-    };
-    for e in model.elements() {
-        union(&mut parent, e.a, e.b);
-    }
-    for e in 0..provider.n_elements() {
-        let nodes = provider.element_nodes(e);
-        for w in nodes.windows(2) {
-            if w[0] < n && w[1] < n {
-                union(&mut parent, w[0], w[1]);
-            }
-        }
-    }
-    (0..n).map(|i| find(&mut parent, i)).collect()
-}
-
-/// Connected parts held by nothing.
-pub(crate) fn check_supported<P: LoadProvider + ?Sized>(
-    model: &Model,
-    provider: &P,
-    part: &[usize],
-) -> Result<()> {
-    let n = model.n_nodes();
-    let mut held = vec![false; n];
-    provider.mark_restoring_nodes(&mut held);
-    let seabed = model.env.seabed.is_some();
-    let mut comp_held = vec![false; n];
-    let mut comp_size = vec![0usize; n];
-    for i in 0..n {
-        let r = part[i];
-        comp_size[r] += 1;
-        let c = (0..3).any(|k| model.is_constrained(i, k))
-            || held[i]
-            || (seabed && (model.bed_coef[i] > 0.0 || model.bed_point[i] > 0.0));
-        comp_held[r] |= c;
-    }
-    for i in 0..n {
-        if part[i] == i && !comp_held[i] {
-            return Err(FemError::Unconstrained {
-                first_node: i,
-                n_nodes: comp_size[i],
-                nodes: (0..n).filter(|&j| part[j] == i).collect(),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// Parts with no node fixed in x (or y) whose external loads `fext` (evaluated at the
-/// as-built position) have a resultant along that axis: nothing can balance it in statics,
-/// where only fixed DOFs act horizontally (seabed contact and buoyancy are vertical, no
-/// seabed friction; docs/theory/fem.md#static-solver). Each axis is judged alone: a part
-/// fixed in y only and pushed along x drifts along x. A resultant below 1e-6 of the part's
-/// Σ|f| is round-off.
-fn check_held_horizontally(model: &Model, part: &[usize], fext: &[[f64; 3]]) -> Result<()> {
-    let n = model.n_nodes();
-    // Per part: fixed in x, fixed in y, resultant, Σ|f|.
-    let mut fixed = vec![[false; 2]; n];
-    let mut sum = vec![[0.0f64; 2]; n];
-    let mut abs = vec![0.0f64; n];
-    for i in 0..n {
-        let r = part[i];
-        for k in 0..2 {
-            fixed[r][k] |= model.is_constrained(i, k);
-            sum[r][k] += fext[i][k];
-        }
-        abs[r] += fext[i].iter().map(|f| f.abs()).sum::<f64>();
-    }
-    for r in 0..n {
-        if part[r] != r {
-            continue;
-        }
-        let pushed = |k: usize| !fixed[r][k] && sum[r][k].abs() > 1e-6 * abs[r] + 1e-9;
-        let dirs: Vec<&str> = [(0, "x"), (1, "y")]
-            .into_iter()
-            .filter(|&(k, _)| pushed(k))
-            .map(|(_, d)| d)
-            .collect();
-        if !dirs.is_empty() {
-            let nodes: Vec<usize> = (0..n).filter(|&i| part[i] == r).collect();
-            return Err(FemError::Drifting {
-                first_node: r,
-                n_nodes: nodes.len(),
-                free_dirs: dirs.join(" and "),
-                force: sum[r],
-                nodes,
-            });
-        }
-    }
-    Ok(())
-}
-
-/// Parts with no node fixed in z and no seabed contact whose weights and point forces pull
-/// them down harder than their buoyancy can hold them, fully submerged
-/// ([`FemError::Sinking`]): without it such a part sinks for hundreds of iterations
-/// (docs/theory/fem.md#static-solver). Skipped if the provider cannot give its largest
-/// buoyancy.
-fn check_held_up<P: LoadProvider + ?Sized>(
-    model: &Model,
-    provider: &P,
-    part: &[usize],
-) -> Result<()> {
-    let n = model.n_nodes();
-    let mut lift = vec![0.0; n];
-    if !provider.max_buoyancy(&mut lift) {
-        return Ok(());
-    }
-    let seabed = model.env.seabed.is_some();
-    let mut held = vec![false; n];
-    let (mut down, mut up) = (vec![0.0f64; n], vec![0.0f64; n]);
-    for i in 0..n {
-        let r = part[i];
-        held[r] |= model.is_constrained(i, 2)
-            || (seabed && (model.bed_coef[i] > 0.0 || model.bed_point[i] > 0.0));
-        down[r] -= model.weight[i][2] + model.point_force[i][2];
-        up[r] += lift[i];
-    }
-    for r in 0..n {
-        if part[r] == r && !held[r] && down[r] > up[r] * (1.0 + 1e-9) + 1e-9 {
-            let nodes: Vec<usize> = (0..n).filter(|&i| part[i] == r).collect();
-            return Err(FemError::Sinking {
-                first_node: r,
-                n_nodes: nodes.len(),
-                weight: down[r],
-                buoyancy: up[r],
-                nodes,
-            });
-        }
-    }
-    Ok(())
 }
 
 /// The warning that the equilibrium's forces are exact only to F_noise [N], when that is more
@@ -736,15 +455,10 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             dw += cable::strain_energy(e, (c.length - e.l0) / e.l0)
                 - cable::strain_energy(e, (l_x - e.l0) / e.l0);
         }
-        if let Some(bed) = self.model.env.seabed {
-            let zs = -bed.depth;
+        if self.model.env.seabed.is_some() {
+            let bed = BedLaw::new(self.model, false);
             for i in 0..self.model.n_nodes() {
-                let k = bed.stiffness * self.model.bed_coef[i] + self.model.bed_point[i];
-                if k > 0.0 {
-                    let d1 = (zs - self.x_trial[i][2]).max(0.0);
-                    let d0 = (zs - x0[i][2]).max(0.0);
-                    dw += 0.5 * k * (d1 - d0) * (d1 + d0);
-                }
+                dw += bed.energy_change(self.model, i, x0[i][2], self.x_trial[i][2]);
             }
         }
         let mut work = 0.0;
