@@ -8,7 +8,7 @@ use aqua_hydro::assembly::{MAX_DOFS, MAX_NODES};
 use aqua_hydro::{
     Block, ElementOutput, Elements, HydroError, LineElement, LineProps, LoadAssembly, MorisonModel,
     NetPanel, NetProps, Outputs, PanelNodes, PointElement, PointProps, PointShape, ScreenModel,
-    Wake, WakeGroup, WakeModel, WakeUpdate, Want,
+    Wake, WakeCell, WakeGroup, WakeModel, WakeUpdate, Want,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -812,6 +812,63 @@ fn cheng_wake_uses_oriented_normal() {
             // horizontal bottom: c = 0 < 0.38·Sn − 0.05 → r = 0
             assert_eq!(cell.factor, 0.0);
         }
+    }
+}
+
+/// Every change of a wake factor counts, not only a change of membership: tilting the
+/// shadowed panels of a Cheng cage changes their factors (no element leaves the shadow), and
+/// the update must say so; a change below `WAKE_TOLERANCE` leaves the loads as they were, to
+/// the bit, and says no change (docs/theory/hydrodynamics.md#wake-update).
+#[test]
+fn every_wake_factor_change_counts_and_none_is_applied_silently() {
+    let (x, els) = cage(wake(WakeModel::Cheng, WakeUpdate::Step), 0.15);
+    let n = x.len();
+    let mut asm = LoadAssembly::new(current_sea([0.5, 0.0, 0.0]), n, els).unwrap();
+    asm.update_wake(0.0, &x).unwrap();
+    let before: Vec<WakeCell> = asm.wake().to_vec();
+    // Tilt the net's bottom (z += a·x): horizontal positions, hence membership, stay.
+    let tilt =
+        |a: f64| -> Vec<[f64; 3]> { x.iter().map(|p| [p[0], p[1], p[2] + a * p[0]]).collect() };
+    let x2 = tilt(0.05);
+    assert!(asm.update_wake(0.0, &x2).unwrap());
+    let after: Vec<WakeCell> = asm.wake().to_vec();
+    for (e, (b, a)) in before.iter().zip(&after).enumerate() {
+        assert_eq!(b.in_shadow, a.in_shadow, "element {e} changed membership");
+    }
+    assert!(
+        before
+            .iter()
+            .zip(&after)
+            .any(|(b, a)| (b.factor - a.factor).abs() > 1e-3)
+    );
+    // Cheng's factor written out for every shadowed panel of the tilted net.
+    for e in 0..asm.n_elements() {
+        let cell = asm.wake()[e];
+        if !cell.in_shadow {
+            continue;
+        }
+        let nodes = asm.element_nodes(e).to_vec();
+        let p = |i: usize| x2[nodes[i]];
+        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let (d1, d2) = if nodes.len() == 3 {
+            (sub(p(1), p(0)), sub(p(2), p(0)))
+        } else {
+            (sub(p(2), p(0)), sub(p(3), p(1)))
+        };
+        let a = [
+            d1[1] * d2[2] - d1[2] * d2[1],
+            d1[2] * d2[0] - d1[0] * d2[2],
+            d1[0] * d2[1] - d1[1] * d2[0],
+        ];
+        let c = a[0].abs() / (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+        let r = ((c + 0.05 - 0.38 * 0.15) / (c + 0.05)).clamp(0.0, 1.0);
+        assert!((cell.factor - r).abs() < 1e-12, "element {e}");
+    }
+    // A change far below the tolerance: nothing applied, nothing reported.
+    let x3 = tilt(0.05 + 1e-9);
+    assert!(!asm.update_wake(0.0, &x3).unwrap());
+    for (a, b) in asm.wake().iter().zip(&after) {
+        assert_eq!(a.factor.to_bits(), b.factor.to_bits());
     }
 }
 

@@ -1,7 +1,9 @@
 //! Cage-to-cage wake (docs/theory/hydrodynamics.md#cage-to-cage-wake) against independent
-//! numbers: the downstream cage of two in line sees exactly the current reduced by r_c², with
-//! r_c from Løland's formula written out here; a cage beside the other and a switched-off wake
-//! see the free current.
+//! numbers: the ratio on every element of a row of three cages follows the recovery law
+//! written out here (a widening top-hat wake, deficits added in proportion to the current
+//! reaching each cage); without spreading the downstream cage of two in line sees exactly the
+//! current reduced by r_c², with r_c from Løland's formula written out here; a cage beside the
+//! other and a switched-off wake see the free current.
 
 use aqua_env::{Constants, Current, Phase, Sea, Waves};
 use aqua_hydro::{
@@ -60,7 +62,8 @@ fn add_cage(x: &mut Vec<[f64; 3]>, els: &mut Elements, cx: f64, cy: f64) -> std:
     first..x.len()
 }
 
-/// Total force on each node range, current u along +x, cage-to-cage wake on or off.
+/// Total force on each node range, current u along +x, cage-to-cage wake on or off, its
+/// wakes spreading at rate 0 (no recovery).
 fn forces(centres: &[[f64; 2]], u: f64, cage_wake: bool) -> Vec<[f64; 3]> {
     let mut x = Vec::new();
     let mut els = Elements::default();
@@ -77,7 +80,11 @@ fn forces(centres: &[[f64; 2]], u: f64, cage_wake: bool) -> Vec<[f64; 3]> {
     let mut asm = LoadAssembly::new(sea, x.len(), els).unwrap();
     if cage_wake {
         let all: Vec<usize> = (0..groups.len()).collect();
-        asm.set_cage_wake(CageWake::among(&groups, &all)).unwrap();
+        asm.set_cage_wake(CageWake {
+            spreading: 0.0,
+            ..CageWake::among(&groups, &all)
+        })
+        .unwrap();
     }
     let v = vec![[0.0; 3]; x.len()];
     let mut f = vec![[0.0; 3]; x.len()];
@@ -114,7 +121,7 @@ fn loland(sn: f64) -> f64 {
 }
 
 #[test]
-fn downstream_cage_sees_the_current_reduced_by_r_squared() {
+fn without_spreading_the_downstream_cage_sees_the_current_reduced_by_r_squared() {
     let rc = loland(SN);
     let pair = forces(&[[0.0, 0.0], [30.0, 0.0]], U, true);
     let alone_up = forces(&[[0.0, 0.0]], U, false)[0];
@@ -172,8 +179,11 @@ fn repeated_updates_do_not_compound() {
         Waves::None,
     );
     let mut asm = LoadAssembly::new(sea, x.len(), els).unwrap();
-    asm.set_cage_wake(CageWake::among(&groups, &[0, 1]))
-        .unwrap();
+    asm.set_cage_wake(CageWake {
+        spreading: 0.0,
+        ..CageWake::among(&groups, &[0, 1])
+    })
+    .unwrap();
     let downstream = asm.n_elements() - 1;
     asm.update_wake(0.0, &x).unwrap();
     let first = asm.cage_wake_factor(downstream);
@@ -204,6 +214,7 @@ fn repeated_updates_do_not_compound() {
                 group: 7,
                 factor: 0.9,
             }],
+            spreading: 0.1,
         })
         .unwrap_err()
         .to_string();
@@ -211,4 +222,67 @@ fn repeated_updates_do_not_compound() {
         e.contains("cage_wake.sources[0].group") && e.contains('7'),
         "{e}"
     );
+}
+
+/// The recovery law of docs/theory/hydrodynamics.md#cage-to-cage-wake, written out: the wake
+/// of a cage of half-width R widens as R + k·x behind its rear (x = s − R), keeping the
+/// deficit flux, and overlapping deficits add in proportion to the current reaching each cage.
+#[test]
+fn a_row_of_three_cages_follows_the_recovery_law() {
+    let (k, r_half) = (0.1, 5.0);
+    let rc = loland(SN);
+    let d0 = 1.0 - rc * rc;
+    let deficit = |cx: f64, p: [f64; 2]| {
+        let s = p[0] - cx;
+        let w = r_half + k * (s - r_half).max(0.0);
+        if s <= 0.0 || p[1].abs() >= w {
+            0.0
+        } else {
+            d0 * (r_half / w).powi(2)
+        }
+    };
+    let centres = [0.0, 30.0, 60.0];
+    let mut x = Vec::new();
+    let mut els = Elements::default();
+    for &c in &centres {
+        add_cage(&mut x, &mut els, c, 0.0);
+    }
+    let panels = els.panels.clone();
+    let groups = els.wake_groups.clone();
+    let sea = Sea::new(
+        Constants::default(),
+        Current::uniform([U, 0.0, 0.0]),
+        Waves::None,
+    );
+    let mut asm = LoadAssembly::new(sea, x.len(), els).unwrap();
+    asm.set_cage_wake(CageWake::among(&groups, &[0, 1, 2]))
+        .unwrap();
+    asm.update_wake(0.0, &x).unwrap();
+    // The current reaching the 2nd cage (at its centre) and the 3rd.
+    let u1 = 1.0;
+    let u2 = 1.0 - u1 * deficit(0.0, [30.0, 0.0]);
+    let u3 = 1.0 - u1 * deficit(0.0, [60.0, 0.0]) - u2 * deficit(30.0, [60.0, 0.0]);
+    // The wake recovers: the 3rd cage gets more than the product of the near-wake factors.
+    assert!(u3 > rc.powi(4) + 0.05, "{u3} vs r_c^4 = {}", rc.powi(4));
+    assert!(u2 > rc * rc && u2 < 1.0);
+    for (e, p) in panels.iter().enumerate() {
+        let nodes: Vec<usize> = match p.nodes {
+            PanelNodes::Quad(q) => q.to_vec(),
+            PanelNodes::Triangle(t) => t.to_vec(),
+        };
+        let c = nodes.iter().fold([0.0, 0.0], |a, &n| {
+            [
+                a[0] + x[n][0] / nodes.len() as f64,
+                a[1] + x[n][1] / nodes.len() as f64,
+            ]
+        });
+        let want = match p.wake_group {
+            Some(0) => 1.0,
+            Some(1) => 1.0 - u1 * deficit(0.0, c),
+            Some(2) => 1.0 - u1 * deficit(0.0, c) - u2 * deficit(30.0, c),
+            _ => unreachable!(),
+        };
+        let got = asm.cage_wake_factor(e);
+        assert!((got - want).abs() < 1e-12, "panel {e}: {got} vs {want}");
+    }
 }

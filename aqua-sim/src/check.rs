@@ -201,7 +201,9 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
                 (0, _) => "off (a [[farm]] turns it on; [wake] cage_to_cage for [[cage]]s)".into(),
                 (_, false) => "it reduces the current, and there is none: skipped".into(),
                 (n, true) => format!(
-                    "{n} cages reduce the current behind them by r_c^2 (from the as-built geometry)"
+                    "{n} cages slow the current behind them by 1 - r_c^2, recovering with \
+                     distance (spreading {})",
+                    built.cage_wake.spreading
                 ),
             },
         },

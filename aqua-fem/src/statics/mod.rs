@@ -249,17 +249,20 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                 x_acc.copy_from_slice(&ctx.x);
                 s_acc = s;
                 if s >= 1.0 {
-                    // Wake membership follows the equilibrium: re-solve while it changes.
-                    if !crate::loads::accept_state(&mut *ctx.prov, t, &ctx.x)? {
+                    // The wake follows the equilibrium: re-solve while it changes. After
+                    // MAX_WAKE_PASSES re-solves the last wake is kept (frozen) and solved for
+                    // once more, so the state is the equilibrium of the wake it reports.
+                    if wake_passes > MAX_WAKE_PASSES
+                        || !crate::loads::accept_state(&mut *ctx.prov, t, &ctx.x)?
+                    {
                         break;
                     }
                     if wake_passes == MAX_WAKE_PASSES {
                         report.warnings.push(format!(
                             "the wake still changed after {MAX_WAKE_PASSES} re-solves at full \
-                             load; the state is the equilibrium of the wake before the last \
-                             change, and its forces and outputs are evaluated with the last one"
+                             load; it is frozen as of the last equilibrium and the state is \
+                             the equilibrium of that frozen wake (docs/theory/fem.md#static-solver)"
                         ));
-                        break;
                     }
                     wake_passes += 1;
                     continue;

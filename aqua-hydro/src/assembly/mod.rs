@@ -43,6 +43,7 @@ mod wake_update;
 pub use bulk::Outputs;
 use sinks::{CompactSink, DenseSink, Sink};
 use stats::{Local, Stats};
+pub use wake_update::WAKE_TOLERANCE;
 
 /// A row-major 3×3 block.
 pub type Block = [[f64; 3]; 3];
@@ -279,6 +280,14 @@ pub struct LoadAssembly {
     cage_receivers: Vec<(usize, usize)>,
     /// Cage-to-cage ratio per element (1 outside every upstream cage's shadow).
     cage_factor: Vec<f64>,
+    /// The wake update's candidates (committed only if they differ from `wake` and
+    /// `cage_factor` by more than [`WAKE_TOLERANCE`]), and its
+    /// buffers: the cages' wakes, their order along the flow, net node positions.
+    wake_next: Vec<WakeCell>,
+    cage_next: Vec<f64>,
+    shadows: Vec<crate::cage_wake::CageShadow>,
+    shadow_order: Vec<usize>,
+    shadow_pts: Vec<[f64; 3]>,
     elem_force: Vec<[[f64; 3]; MAX_NODES]>,
     elem_mass: Vec<Block>,
     stats: Stats,
@@ -569,6 +578,11 @@ impl LoadAssembly {
             cage_wake: CageWake::default(),
             cage_receivers: Vec::new(),
             cage_factor: vec![1.0; ne],
+            wake_next: vec![WakeCell::default(); ne],
+            cage_next: vec![1.0; ne],
+            shadows: Vec::new(),
+            shadow_order: Vec::new(),
+            shadow_pts: Vec::new(),
             elem_force: vec![[[0.0; 3]; MAX_NODES]; ne],
             elem_mass: vec![[[0.0; 3]; 3]; ne],
             stats: Stats::new(),
