@@ -7,7 +7,7 @@
 
 use crate::collar::{
     Collar, CollarParams, DEFAULT_PIPE_DIAMETER, DEFAULT_SINKER_TUBE_DIAMETER,
-    default_bracket_section, default_pipe_section,
+    default_bracket_section, default_pipe_section, default_sinker_tube_section,
 };
 use crate::error::{MeshError, Result};
 use crate::mesh::{
@@ -633,7 +633,7 @@ pub fn default_frame_section(group: &str) -> Option<Section> {
     match group {
         "ropes" | "tie_lines" => Some(Section::cable("rope", 0.05, 1.0e9, 1100.0)),
         "top_ring" | "top_links" => Some(default_pipe_section(DEFAULT_PIPE_DIAMETER)),
-        "bottom_ring" => Some(default_pipe_section(DEFAULT_SINKER_TUBE_DIAMETER)),
+        "bottom_ring" => Some(default_sinker_tube_section(DEFAULT_SINKER_TUBE_DIAMETER)),
         _ => None,
     }
 }

@@ -183,7 +183,7 @@ fn group_mass(prep: &aqua_sim::Prepared, suffix: &str) -> f64 {
     g.section.mass_per_length
 }
 
-/// Pipe walls default to D/SDR with SDR 17, the net–collar links are pieces of the collar
+/// Pipe walls default to D/SDR with SDR 17 (13.6 for the sinker tube), the net–collar links are pieces of the collar
 /// pipe, a pipe given a new diameter keeps its SDR, and a wall of half the diameter or more is
 /// an error naming the wall and the fix.
 #[test]
@@ -203,16 +203,17 @@ fn pipe_walls_follow_the_standard_dimension_ratio() {
     let cct = "[[cage]]\ntype = \"CCT\"\ncircumference = 60.0\ndepth = 6.0\n\
                cone_depth = 2.0\nelement_length = 3.0\n";
     let prep = prepare_text(&dir, "cct", cct);
-    for (g, d) in [
-        ("/top_ring", 0.35),
-        ("/top_links", 0.35),
-        ("/bottom_ring", 0.25),
+    // The sinker tube is of the heavier class SDR 13.6.
+    for (g, d, sdr) in [
+        ("/top_ring", 0.35, 17.0),
+        ("/top_links", 0.35, 17.0),
+        ("/bottom_ring", 0.25, 13.6),
     ] {
         let m = group_mass(&prep, g);
-        let want = pipe_mass(d, d / 17.0);
+        let want = pipe_mass(d, d / sdr);
         assert!(
             (m / want - 1.0).abs() < 1e-12,
-            "{g}: {m} kg/m, SDR 17: {want}"
+            "{g}: {m} kg/m, SDR {sdr}: {want}"
         );
     }
     // Only a small diameter for a pipe group: the wall follows it.
