@@ -242,7 +242,7 @@ impl Results {
         let d = PyDict::new(py);
         for (name, v) in &self.extremes {
             let e = PyDict::new(py);
-            for (k, x) in ["max", "t_max", "min", "t_min"].iter().zip(v) {
+            for (k, x) in ["max", "t_max", "min", "t_min"].into_iter().zip(*v) {
                 e.set_item(k, x)?;
             }
             d.set_item(name, e)?;

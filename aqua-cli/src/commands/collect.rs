@@ -55,7 +55,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     let sampled: Vec<&str> = c
         .runs
         .iter()
-        .filter(|r| !r.every_step && r.status != "unknown")
+        .filter(|r| !r.every_step && !r.stats.is_empty())
         .map(|r| r.folder.as_str())
         .collect();
     if sampled.is_empty() {
