@@ -39,6 +39,17 @@ fn column(csv: &str, name: &str) -> Vec<f64> {
         .collect()
 }
 
+/// (t_max, max) of `column` in `DIR/extremes.csv`.
+fn extreme_max(dir: &Path, column: &str) -> (f64, f64) {
+    let text = std::fs::read_to_string(dir.join("extremes.csv")).unwrap();
+    let f: Vec<&str> = text
+        .lines()
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .find(|f| f[0] == column)
+        .unwrap_or_else(|| panic!("no {column} in extremes.csv"));
+    (f[2].parse().unwrap(), f[1].parse().unwrap())
+}
+
 #[test]
 fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
     let out = std::env::temp_dir().join(format!("aqua-plot-{}", std::process::id()));
@@ -67,6 +78,7 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
     let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
     let pictures = aqua_sim::plot::plot_run(&out).unwrap();
     let mut checked = 0;
+    let mut peaks = 0;
     for p in &pictures {
         for s in &p.series {
             if p.title.starts_with("Static solver") {
@@ -77,12 +89,28 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
                 v.iter().copied().fold(f64::INFINITY, f64::min),
                 v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             );
+            // The tension and line-end curves carry their largest value over every step
+            // (extremes.csv), at or above the sampled curve.
+            let hi = match s.peak {
+                Some((t, peak)) => {
+                    let (t_max, max) = extreme_max(&out, &s.name);
+                    assert_eq!((t, peak), (t_max, max), "{}", s.name);
+                    assert!(peak >= hi, "{}: {peak} below the sampled {hi}", s.name);
+                    peaks += 1;
+                    peak
+                }
+                None => hi,
+            };
             assert_eq!((s.min, s.max), (lo, hi), "{}", s.name);
             assert_eq!(s.points.len(), v.len());
             checked += 1;
         }
     }
     assert!(checked >= 8, "{checked} series checked");
+    assert!(
+        peaks >= 3,
+        "Tmax and the line-end curves are marked: {peaks}"
+    );
     // The convergence picture holds every static iterate of run.json.
     let run: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();

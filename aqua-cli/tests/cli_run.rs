@@ -324,6 +324,53 @@ fn interrupt_dynamics(signal: &str, code: i32) {
         entries.len() + 1,
         "one summary row per output step"
     );
+    // The extremes reached before the signal: in extremes.csv and in run.json, the same, and
+    // bounding those of the output steps written.
+    let extremes = assert_extremes_agree(&out);
+    assert!(extremes.len() >= 4, "{extremes:?}");
+    for (c, max, min) in &extremes {
+        let Some(k) = csv.lines().next().unwrap().split(',').position(|h| h == c) else {
+            continue; // F_net, R: magnitudes, not summary columns
+        };
+        // The dynamic part: after the static row.
+        for line in csv.lines().skip(2) {
+            let v: f64 = line.split(',').nth(k).unwrap().parse().unwrap();
+            assert!(*min <= v && v <= *max, "{c}: {v} outside [{min}, {max}]");
+        }
+    }
+}
+
+/// Asserts `DIR/extremes.csv` and `DIR/run.json`'s `extremes` hold the same columns and
+/// numbers (to an ulp: serde_json's parser may round the last digit); returns (column, max,
+/// min) of each.
+fn assert_extremes_agree(dir: &Path) -> Vec<(String, f64, f64)> {
+    let text = std::fs::read_to_string(dir.join("extremes.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("column,max,t_max,min,t_min"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("run.json")).unwrap()).unwrap();
+    let obj = json["extremes"].as_object().expect("run.json has extremes");
+    let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs());
+    let mut out = Vec::new();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let e = &obj[f[0]];
+        for (k, key) in ["max", "t_max", "min", "t_min"].iter().enumerate() {
+            let v: f64 = f[k + 1].parse().unwrap();
+            assert!(
+                close(v, e[key].as_f64().unwrap()),
+                "{} {key}: {v} vs {e}",
+                f[0]
+            );
+        }
+        out.push((
+            f[0].to_string(),
+            f[1].parse().unwrap(),
+            f[3].parse().unwrap(),
+        ));
+    }
+    assert_eq!(out.len(), obj.len());
+    out
 }
 
 #[test]
@@ -768,6 +815,12 @@ fn interrupt_statics(signal: &str, code: i32) {
         "the net has not moved: volume ratio {}",
         col("volume_ratio")
     );
+    // The extremes are those of the one state reached, the iterate written as step 0.
+    for (c, max, min) in assert_extremes_agree(&out) {
+        if head.contains(&c.as_str()) {
+            assert_eq!((max, min), (col(&c), col(&c)), "{c}");
+        }
+    }
 }
 
 #[test]
@@ -845,4 +898,118 @@ fn a_closed_pipe_ends_quietly() {
         assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+/// Largest value of `column` over the rows of a `summary.csv` after the static row.
+fn sampled_max(csv: &str, column: &str) -> (f64, f64) {
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = head.iter().position(|h| *h == column).unwrap();
+    lines
+        .skip(1)
+        .map(|l| {
+            let f: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+            (f[0], f[k])
+        })
+        .fold(
+            (f64::NAN, f64::NEG_INFINITY),
+            |a, b| if b.1 > a.1 { b } else { a },
+        )
+}
+
+#[test]
+fn collect_study_and_plot_report_a_peak_between_output_steps() {
+    // A taut 10-segment line whose fairlead is surged at a 2 s period, written every 0.3 s:
+    // its fairlead tension peaks between output steps. The reference is the same run written
+    // at every step (output_interval = dt: the same steps).
+    let dir = scratch("peak-between-samples");
+    let scene = dir.join("taut.toml");
+    std::fs::write(
+        &scene,
+        "name = \"taut\"\n[sea]\ndepth = 50.0\n[[line]]\nname = \"chain\"\n\
+         anchor = [0.0, 0.0, -50.0]\nfairlead = [100.0, 0.0, -5.0]\nlength = 108.0\n\
+         segments = 10\ndiameter = 0.1354\nmass_per_length = 113.0\nea = 5.4e7\n\
+         [[prescribed]]\nnodes = \"chain/fairlead\"\nmotion = \"sine\"\n\
+         amplitude = [1.0, 0.0, 0.3]\nperiod = 2.0\nramp_time = 0.5\n\
+         [analysis]\nkind = \"static+dynamic\"\n[analysis.dynamic]\nscheme = \"midpoint\"\n\
+         dt = 0.02\nt_end = 3.0\noutput_interval = 0.3\n",
+    )
+    .unwrap();
+    let run = |out: &Path, interval: &str| {
+        let (code, _, err) = aqua(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--set",
+            &format!("analysis.dynamic.output_interval={interval}"),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        std::fs::read_to_string(out.join("summary.csv")).unwrap()
+    };
+    let column = "chain_fairlead_element_tension";
+    let (t_ref, reference) = sampled_max(&run(&dir.join("dense"), "0.02"), column);
+    let coarse = dir.join("runs").join("coarse");
+    let (_, sampled) = sampled_max(&run(&coarse, "0.3"), column);
+    assert!(
+        sampled < 0.99 * reference,
+        "the test needs a peak between output steps: {sampled} vs {reference}"
+    );
+    let close = |v: f64| (v - reference).abs() <= 1e-8 * reference;
+
+    // The run's own files.
+    let extremes = assert_extremes_agree(&coarse);
+    let (_, max, _) = extremes.iter().find(|e| e.0 == column).unwrap();
+    assert!(
+        close(*max),
+        "extremes.csv {max} vs every step sampled {reference}"
+    );
+
+    // aqua collect: max over every step.
+    let (code, stdout, err) = aqua(&["collect", dir.join("runs").to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("over every accepted step"), "{stdout}");
+    let table = std::fs::read_to_string(dir.join("runs/collected.csv")).unwrap();
+    let mut lines = table.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = head
+        .iter()
+        .position(|h| *h == format!("{column} max"))
+        .unwrap();
+    let collected: f64 = row[k].parse().unwrap();
+    assert!(close(collected), "collect {collected} vs {reference}");
+
+    // aqua study: its max metric is the per-step one, whatever the output interval.
+    let out = dir.join("study");
+    let (code, _, err) = aqua(&[
+        "study",
+        scene.to_str().unwrap(),
+        "--vary",
+        "analysis.dynamic.output_interval=0.3,0.06",
+        "--metric",
+        &format!("max:{column}"),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let study: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("study.json")).unwrap()).unwrap();
+    for r in study["runs"].as_array().unwrap() {
+        let v = r["values"][0].as_f64().unwrap();
+        assert!(close(v), "study run {}: {v} vs {reference}", r["setting"]);
+    }
+
+    // aqua plot: the line-end picture marks the peak, above the sampled curve.
+    let pictures = aqua_sim::plot::plot_run(&coarse).unwrap();
+    let ends = pictures
+        .iter()
+        .find(|p| p.path.ends_with("line_ends.png"))
+        .unwrap();
+    let s = ends.series.iter().find(|s| s.name == column).unwrap();
+    let (t, peak) = s.peak.expect("the per-step peak is marked");
+    assert!(close(peak) && (t - t_ref).abs() < 1e-9, "({t}, {peak})");
+    assert_eq!(s.max, peak);
 }

@@ -6,6 +6,7 @@
 //! scene = aqua.Scene.load("examples/mooring-chain.toml")
 //! scene.check()                       # list of diagnostics (dicts); raises aqua.AquaError
 //! res = scene.run(out="out/chain")    # res.summary["chain_fairlead_reaction"], res.positions
+//!                                     # res.extremes["chain_fairlead_reaction"]["max"]
 //! sim = aqua.Coupling(scene)
 //! f0 = sim.init()                     # {"chain/fairlead": array (1, 3)} at equilibrium
 //! f = sim.step(0.0, 0.1, {"chain/fairlead": [100.1, 0.0, -5.0]})
@@ -165,9 +166,15 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<O
         tensions: Vec::new(),
     };
     let (record, result) = sim.run(&mut c);
-    // The buffered summary rows, also after an interruption or a failure; the run's own
-    // error is raised first.
-    let flushed = c.files.as_mut().map_or(Ok(()), RunFiles::flush);
+    // The buffered summary rows and the extremes, also after an interruption or a failure;
+    // the run's own error is raised first.
+    let flushed = c.files.as_mut().map_or(Ok(()), |f| {
+        f.flush()?;
+        record
+            .extremes
+            .as_ref()
+            .map_or(Ok(()), |e| f.write_extremes(e))
+    });
     result?;
     flushed?;
     if record.ending == aqua_sim::Ending::Interrupted {
@@ -181,6 +188,16 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<O
         n_nodes: prep.built.model.n_nodes(),
         n_elements: prep.built.model.elements().len(),
         status: record.ending.as_str().to_string(),
+        extremes: record
+            .extremes
+            .as_ref()
+            .map(|e| {
+                e.table()
+                    .into_iter()
+                    .map(|(c, x)| (c.to_string(), [x.max, x.t_max, x.min, x.t_min]))
+                    .collect()
+            })
+            .unwrap_or_default(),
     }))
 }
 
@@ -194,6 +211,8 @@ struct Results {
     n_nodes: usize,
     n_elements: usize,
     status: String,
+    /// Per load column: max, t_max, min, t_min over every accepted step.
+    extremes: Vec<(String, [f64; 4])>,
 }
 
 #[pymethods]
@@ -214,6 +233,21 @@ impl Results {
     #[getter]
     fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.column(py, "t")
+    }
+
+    /// The load extremes over every accepted step (as `extremes.csv`):
+    /// {column: {"max", "t_max", "min", "t_min"}}.
+    #[getter]
+    fn extremes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, v) in &self.extremes {
+            let e = PyDict::new(py);
+            for (k, x) in ["max", "t_max", "min", "t_min"].into_iter().zip(*v) {
+                e.set_item(k, x)?;
+            }
+            d.set_item(name, e)?;
+        }
+        Ok(d)
     }
 
     /// The summary columns by name: {name: array (n_steps,)}.

@@ -1,8 +1,9 @@
 //! Run files: a ParaView multiblock time series (`<scene>.pvd` → `<scene>_NNNNNN.vtm` per output
 //! step → one `.vtu` per object and kind in `<scene>_NNNNNN/`, see [`aqua_mesh::vtm`]), the
 //! undeformed geometry once (`<scene>_reference.vtm`), a pvpython starting point
-//! (`open_in_paraview.py`), `summary.csv` (one row per output step) and `run.json` (resolved
-//! scene, name tables, final values, timing).
+//! (`open_in_paraview.py`), `summary.csv` (one row per output step), `extremes.csv` (the
+//! extremes of the load columns over every accepted step, [`crate::extremes`]) and `run.json`
+//! (resolved scene, name tables, final values, extremes, timing).
 //!
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
@@ -31,6 +32,7 @@
 
 use crate::build::Built;
 use crate::error::{Result, SimError};
+use crate::extremes::Extremes;
 use crate::post::SummaryRow;
 use aqua_fem::{Outputs, State};
 use aqua_mesh::{BlockArray, Mesh, MultiblockSeries, NameTables, StepArrays};
@@ -163,6 +165,11 @@ impl RunFiles {
             if let Some(s) = supported.get_mut(n) {
                 *s = 1;
             }
+        }
+        // An earlier run's extremes would stand for this run's until it writes its own.
+        let stale = dir.join("extremes.csv");
+        if stale.exists() {
+            std::fs::remove_file(&stale).map_err(io("removing", &stale))?;
         }
         let path = dir.join("summary.csv");
         let mut csv =
@@ -373,10 +380,21 @@ impl RunFiles {
 
     /// Writes `run.json` atomically.
     pub fn write_json(&self, value: &serde_json::Value) -> Result<()> {
-        let path = self.dir.join("run.json");
-        let tmp = self.dir.join(".run.json.tmp");
         let text = serde_json::to_string_pretty(value)
             .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"));
+        self.write_atomically("run.json", &text)
+    }
+
+    /// Writes `extremes.csv` atomically (one row per load column: column, max, t_max, min,
+    /// t_min; only the header before any state was reached).
+    pub fn write_extremes(&self, extremes: &Extremes) -> Result<()> {
+        self.write_atomically("extremes.csv", &extremes.csv())
+    }
+
+    /// Writes `DIR/name` through a temporary file and a rename.
+    fn write_atomically(&self, name: &str, text: &str) -> Result<()> {
+        let path = self.dir.join(name);
+        let tmp = self.dir.join(format!(".{name}.tmp"));
         std::fs::write(&tmp, text).map_err(io("writing", &tmp))?;
         std::fs::rename(&tmp, &path).map_err(io("writing", &path))?;
         Ok(())

@@ -5,7 +5,8 @@
 //! [`plan`] validates the analysis (the one validation `aqua check` and `aqua run` share),
 //! [`run`] drives statics and dynamics through the solvers ([`solvers`], the only caller of
 //! aqua-fem's `solve_static`, `DynamicSolver` and `ExplicitSolver`), [`post`] computes the
-//! physical outputs of each output step, [`files`] writes them, and [`coupling`] lets another
+//! physical outputs of each output step, [`extremes`] the load extremes over every step,
+//! [`files`] writes them, and [`coupling`] lets another
 //! code drive prescribed nodes step by step.
 //!
 //! Governing equations (docs/theory/fem.md#model-and-unknowns, #static-solver to
@@ -30,6 +31,7 @@ pub mod coupling;
 pub mod design;
 pub mod diagnostic;
 pub mod error;
+pub mod extremes;
 pub mod files;
 pub mod overrides;
 pub mod plan;
@@ -46,6 +48,7 @@ pub use build::{Built, Prescribed, build};
 pub use coupling::Coupling;
 pub use diagnostic::{Diagnostic, Severity};
 pub use error::{ModelError, Result, SimError};
+pub use extremes::{Extreme, Extremes};
 pub use overrides::Override;
 pub use plan::{Integrator, Plan, Prepared, prepare, prepare_scene, prepare_with};
 pub use post::SummaryRow;

@@ -3,11 +3,14 @@
 //!
 //! [`plot_run`] draws the time series of a run folder's `summary.csv` (net force and
 //! reactions, largest tension per group, volume ratio, line-end loads) and the static solver's
-//! convergence from `run.json`; [`plot_study`] draws a study's error against its cost. Each
+//! convergence from `run.json`; the tension and line-end pictures mark each curve's largest
+//! value over every accepted step (`extremes.csv`, with its value and time), which a peak
+//! between output steps puts above the curve; [`plot_study`] draws a study's error against its cost. Each
 //! function returns what it plotted (the series' extremes), so tests compare the plotted data,
 //! not pixels, with the tables.
 
 use crate::error::{Result, SimError};
+use crate::extremes::read_extremes;
 use crate::study::Study;
 use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
@@ -28,8 +31,11 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Smallest y plotted.
     pub min: f64,
-    /// Largest y plotted.
+    /// Largest y plotted (incl. the marked peak).
     pub max: f64,
+    /// The largest value over every accepted step and its time (t, y), marked on the picture
+    /// when it is known (`extremes.csv`): between output steps it is above the curve.
+    pub peak: Option<(f64, f64)>,
 }
 
 impl Series {
@@ -42,7 +48,26 @@ impl Series {
             points,
             min,
             max,
+            peak: None,
         }
+    }
+
+    /// The series with its largest value over every step (`t` [s], `value`) marked.
+    pub fn with_peak(mut self, t: f64, value: f64) -> Self {
+        if t.is_finite() && value.is_finite() {
+            self.peak = Some((t, value));
+            self.max = self.max.max(value);
+        }
+        self
+    }
+}
+
+/// A force or tension as a label: kN from 1 kN, else N.
+fn force_text(v: f64) -> String {
+    if v.abs() >= 1e3 {
+        format!("{:.2} kN", v / 1e3)
+    } else {
+        format!("{v:.2} N")
     }
 }
 
@@ -153,6 +178,23 @@ pub fn line_chart(
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(3))
                 });
+        }
+        // The largest value over every step: a triangle in the series' colour, its value and
+        // time beside it.
+        for (i, s) in series.iter().enumerate() {
+            let Some((t, v)) = s.peak else { continue };
+            let color = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at((t, v))
+                        + TriangleMarker::new((0, 0), 7, color.filled())
+                        + Text::new(
+                            format!("max {} at t = {t:.2} s", force_text(v)),
+                            (10, -16),
+                            ("sans-serif", 14),
+                        ),
+                ))
+                .map_err(|e| err(e.to_string()))?;
         }
         finish(&mut chart, &root, &err)?;
     }
@@ -393,8 +435,19 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
                 |c| c == "volume_ratio",
             ),
         ];
+        // The largest values over every accepted step, where the run wrote them.
+        let extremes = read_extremes(dir).unwrap_or_default();
         for (file, title, y, keep) in groups {
             let mut series = table.matching(keep);
+            if matches!(file, "tensions.png" | "line_ends.png") {
+                series = series
+                    .into_iter()
+                    .map(|s| match extremes.get(&s.name) {
+                        Some(e) => s.with_peak(e.t_max, e.max),
+                        None => s,
+                    })
+                    .collect();
+            }
             if file == "volume.png" {
                 // An open net (no enclosed volume) has nothing to show.
                 series.retain(|s| s.max > 0.0);

@@ -106,6 +106,18 @@ pub fn net_force_and_wake(
     loads: &WaterLoads,
     state: &State,
 ) -> ([f64; 3], Vec<f64>) {
+    let f = net_force(built, loads, state);
+    let mesh = &built.mesh;
+    let mut wake = vec![1.0; mesh.lines.len() + mesh.panels.len()];
+    for (e, cell) in built.load_cells.iter().enumerate() {
+        wake[cell.cell] = loads.assembly.wake_factor(e);
+    }
+    (f, wake)
+}
+
+/// Total water load on the nets (panels and twines) at a state [N]; allocates nothing (the
+/// run loop calls it after every step for the extremes).
+pub fn net_force(built: &Built, loads: &WaterLoads, state: &State) -> [f64; 3] {
     let assembly = &loads.assembly;
     let (x, v) = (&state.x, &state.v);
     let mut f = [0.0; 3];
@@ -129,12 +141,7 @@ pub fn net_force_and_wake(
             }
         }
     }
-    let mesh = &built.mesh;
-    let mut wake = vec![1.0; mesh.lines.len() + mesh.panels.len()];
-    for (e, cell) in built.load_cells.iter().enumerate() {
-        wake[cell.cell] = assembly.wake_factor(e);
-    }
-    (f, wake)
+    f
 }
 
 /// Sum of the reactions at the supported nodes [N] and their moment about the origin [N·m].
@@ -148,6 +155,43 @@ pub fn support_reactions(built: &Built, x: &[[f64; 3]], out: &Outputs) -> ([f64;
         moment += Vector3::from(x[n]).cross(&Vector3::from(out.reaction[n]));
     }
     (reaction, [moment.x, moment.y, moment.z])
+}
+
+/// The largest tension of each structural group [N] into `dst` (one per group; 0 for a group
+/// without elements).
+pub fn group_max_tensions(built: &Built, out: &Outputs, dst: &mut [f64]) {
+    for (d, g) in dst.iter_mut().zip(built.model.groups()) {
+        let t = g
+            .elements
+            .iter()
+            .map(|&e| out.tension[e])
+            .fold(f64::NEG_INFINITY, f64::max);
+        *d = if t.is_finite() { t } else { 0.0 };
+    }
+}
+
+/// Per `[[line]]` into `dst`: |R| at the anchor, |R| at the fairlead (at an end attached to
+/// another structure instead of a support, the end element's pull on it), the tension of the
+/// anchor element and of the fairlead element [N].
+pub fn line_end_loads(built: &Built, out: &Outputs, dst: &mut [[f64; 4]]) {
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    for (d, l) in dst.iter_mut().zip(&built.line_ends) {
+        // A supported end reports the support's force; an end attached to another structure
+        // (a collar node, a buoy) the pull of the line's end element on it.
+        let end = |k: usize, node: usize, element: usize| {
+            if l.supported[k] {
+                norm(out.reaction[node])
+            } else {
+                out.tension[element]
+            }
+        };
+        *d = [
+            end(0, l.anchor, l.anchor_element),
+            end(1, l.fairlead, l.fairlead_element),
+            out.tension[l.anchor_element],
+            out.tension[l.fairlead_element],
+        ];
+    }
 }
 
 impl SummaryRow {
@@ -165,40 +209,10 @@ impl SummaryRow {
         let x = &state.x;
         let (reaction, reaction_moment) = support_reactions(built, x, out);
         let volume = total_volume(built, x);
-        let max_tension: Vec<f64> = built
-            .model
-            .groups()
-            .iter()
-            .map(|g| {
-                g.elements
-                    .iter()
-                    .map(|&e| out.tension[e])
-                    .fold(f64::NEG_INFINITY, f64::max)
-            })
-            .map(|t| if t.is_finite() { t } else { 0.0 })
-            .collect();
-        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        let line_ends = built
-            .line_ends
-            .iter()
-            .map(|l| {
-                // A supported end reports the support's force; an end attached to another
-                // structure (a collar node, a buoy) the pull of the line's end element on it.
-                let end = |k: usize, node: usize, element: usize| {
-                    if l.supported[k] {
-                        norm(out.reaction[node])
-                    } else {
-                        out.tension[element]
-                    }
-                };
-                [
-                    end(0, l.anchor, l.anchor_element),
-                    end(1, l.fairlead, l.fairlead_element),
-                    out.tension[l.anchor_element],
-                    out.tension[l.fairlead_element],
-                ]
-            })
-            .collect();
+        let mut max_tension = vec![0.0; built.model.groups().len()];
+        group_max_tensions(built, out, &mut max_tension);
+        let mut line_ends = vec![[0.0; 4]; built.line_ends.len()];
+        line_end_loads(built, out, &mut line_ends);
         SummaryRow {
             t: state.t,
             net_force,
@@ -232,6 +246,17 @@ impl SummaryRow {
         .iter()
         .map(|s| s.to_string())
         .collect();
+        c.extend(Self::load_columns(built));
+        c.push("newton_iterations".into());
+        c.push("dt".into());
+        c
+    }
+
+    /// The columns of the per-group and per-line loads, in the order of [`SummaryRow::values`]:
+    /// `Tmax_<group>` per structural group, then per `[[line]]` its anchor and fairlead
+    /// reactions and end-element tensions.
+    pub fn load_columns(built: &Built) -> Vec<String> {
+        let mut c = Vec::new();
         for g in &built.group_names {
             c.push(format!("Tmax_{}", g.replace(',', "_")));
         }
@@ -246,8 +271,6 @@ impl SummaryRow {
                 c.push(format!("{n}_{end}"));
             }
         }
-        c.push("newton_iterations".into());
-        c.push("dt".into());
         c
     }
 

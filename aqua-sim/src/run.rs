@@ -8,6 +8,7 @@
 use crate::design::DynamicWatch;
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
+use crate::extremes::Extremes;
 use crate::plan::{Integrator, Prepared};
 use crate::post::{SummaryRow, net_force_and_wake, total_volume};
 use crate::provider::WaterLoads;
@@ -73,6 +74,9 @@ pub struct RunRecord {
     pub frames: usize,
     /// The last summary row.
     pub last: Option<SummaryRow>,
+    /// Extremes of the load columns over every accepted step (crate::extremes), also of an
+    /// interrupted or failed run (what it reached).
+    pub extremes: Option<Extremes>,
     /// Step halvings and regrowths of the dynamic phase (HHT-α).
     pub step_control: Option<StepControl>,
     /// The energy ledger at the end of the dynamic phase (implicit schemes).
@@ -192,6 +196,7 @@ impl<'p> Simulation<'p> {
         let prep = self.prep;
         let model = &prep.built.model;
         let plan = &prep.plan;
+        record.extremes = Some(Extremes::new(&prep.built));
         self.loads.phase = Phase::Static;
         let mut initial: Option<State> = None;
         if plan.kind != AnalysisKind::Dynamic {
@@ -219,6 +224,11 @@ impl<'p> Simulation<'p> {
             record.static_load_factor = Some(stat.report.load_factor);
             record.static_converged = Some(!stat.report.interrupted);
             record.static_relative_residual = Some(stat.report.relative_residual);
+            self.observe(record, &stat.state, &stat.outputs);
+            if let Some(e) = record.extremes.as_mut() {
+                // The equilibrium is its own load case: the first dynamic step replaces it.
+                e.until_next();
+            }
             self.frame(
                 obs,
                 record,
@@ -277,6 +287,7 @@ impl<'p> Simulation<'p> {
         write_initial: bool,
     ) -> Result<()> {
         if write_initial {
+            self.observe(record, solver.state(), solver.outputs());
             self.frame(obs, record, solver.state(), solver.outputs(), 0, 0.0)?;
         }
         while !solver.is_finished() {
@@ -297,6 +308,7 @@ impl<'p> Simulation<'p> {
                 .step(&built.design, &solver.state().x, t, |x, y| {
                     built.sea.elevation(x, y, t, Phase::Dynamic)
                 });
+            self.observe(record, solver.state(), solver.outputs());
             obs.step_done(&report, record.steps);
             if report.output_time {
                 self.frame(
@@ -311,6 +323,13 @@ impl<'p> Simulation<'p> {
         }
         record.keep_ledgers(solver);
         Ok(())
+    }
+
+    /// Adds an accepted state to the run's extremes (every step, not only output steps).
+    fn observe(&self, record: &mut RunRecord, state: &State, outputs: &Outputs) {
+        if let Some(e) = record.extremes.as_mut() {
+            e.observe(&self.prep.built, &self.loads, state, outputs);
+        }
     }
 
     /// Post-processes a state and hands it to the observer.

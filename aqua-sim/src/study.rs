@@ -30,12 +30,14 @@
 
 use crate::check::free_dofs;
 use crate::error::{Result, SimError};
+use crate::extremes::Extreme;
 use crate::overrides::{Override, check_path_syntax, parse_value};
 use crate::plan::prepare_with;
 use crate::post::SummaryRow;
 use crate::run::{Ending, Frame, Observer, Simulation};
 use crate::scene::{AnalysisKind, read_scene_with};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
@@ -106,11 +108,12 @@ pub enum Stat {
     Auto,
     /// The static equilibrium's value.
     Static,
-    /// Largest over the dynamic part.
+    /// Largest over the dynamic part (over every accepted step for the load columns).
     Max,
-    /// Smallest over the dynamic part.
+    /// Smallest over the dynamic part (over every accepted step for the load columns).
     Min,
-    /// Value of largest magnitude (sign kept) over the dynamic part.
+    /// Value of largest magnitude (sign kept) over the dynamic part (over every accepted step
+    /// for the load columns).
     Absmax,
     /// Time average over the dynamic output steps.
     Mean,
@@ -188,6 +191,9 @@ pub struct RunRows {
     pub first_dynamic: usize,
     /// True when the analysis has a dynamic part.
     pub dynamic: bool,
+    /// Extremes over every accepted step of the dynamic part ([`crate::extremes`]), by
+    /// column (incl. `F_net` and `R`); empty when not known.
+    pub extremes: BTreeMap<String, Extreme>,
 }
 
 impl RunRows {
@@ -214,6 +220,22 @@ impl RunRows {
             Stat::Auto => Stat::Static,
             s => s,
         };
+        // Max, min and absmax are taken over every accepted step where known: a peak between
+        // two output steps counts (crate::extremes).
+        if let Some(e) = self.extremes.get(&m.column) {
+            match stat {
+                Stat::Max => return Ok(e.max),
+                Stat::Min => return Ok(e.min),
+                Stat::Absmax => {
+                    return Ok(if e.min.abs() > e.max.abs() {
+                        e.min
+                    } else {
+                        e.max
+                    });
+                }
+                _ => {}
+            }
+        }
         let rows: &[Vec<f64>] = match stat {
             Stat::Static if self.first_dynamic == 1 || !self.dynamic => {
                 &self.rows[..1.min(self.rows.len())]
@@ -468,6 +490,16 @@ fn run_one(spec: &StudySpec, index: usize, setting: &[usize], obs: &dyn StudyObs
                     rows: collector.rows,
                     first_dynamic: usize::from(kind == AnalysisKind::StaticDynamic),
                     dynamic: kind != AnalysisKind::Static,
+                    extremes: record
+                        .extremes
+                        .as_ref()
+                        .map(|e| {
+                            e.table()
+                                .into_iter()
+                                .map(|(c, x)| (c.to_string(), x))
+                                .collect()
+                        })
+                        .unwrap_or_default(),
                 });
             }
         }

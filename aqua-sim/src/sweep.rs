@@ -24,6 +24,7 @@
 //! whichever engine ran the cases.
 
 use crate::error::{Result, SimError};
+use crate::extremes::read_extremes;
 use crate::overrides::{Override, check_path_syntax};
 use crate::plot::SummaryTable;
 use crate::study::{csv_line, value_text};
@@ -291,8 +292,13 @@ pub struct Collected {
     pub status: String,
     /// Wall time [s].
     pub wall_time_s: f64,
-    /// Per summary column: (name, min, max, mean, std) over the dynamic part.
+    /// Per summary column: (name, min, max, mean, std) over the dynamic part; min and max over
+    /// every accepted step where the run wrote its extremes (`extremes.csv`), else over the
+    /// output steps of `summary.csv`.
     pub stats: Vec<(String, [f64; 4])>,
+    /// True when min and max of the load columns are over every accepted step (the run
+    /// wrote `extremes.csv` or `run.json`'s `extremes`), false when over output steps only.
+    pub every_step: bool,
     /// Error text.
     pub error: Option<String>,
 }
@@ -412,6 +418,7 @@ fn collect_one(folder: &Path) -> Result<Collected> {
             .or_else(|| run.as_ref()?.get("wall_time_s")?.as_f64())
             .unwrap_or(f64::NAN),
         stats: vec![],
+        every_step: false,
         error: case
             .as_ref()
             .and_then(|c| c.error.clone())
@@ -436,6 +443,9 @@ fn collect_one(folder: &Path) -> Result<Collected> {
         ("static+dynamic", n) if n > 1 => &table.rows[1..],
         _ => &table.rows[..],
     };
+    // The extremes over every accepted step, where the run wrote them (crate::extremes).
+    let extremes = read_extremes(folder);
+    c.every_step = extremes.is_some();
     for (k, col) in table.columns.iter().enumerate() {
         if NOT_RESULTS.contains(&col.as_str()) || rows.is_empty() {
             continue;
@@ -444,26 +454,26 @@ fn collect_one(folder: &Path) -> Result<Collected> {
         let n = v.len() as f64;
         let mean = v.iter().sum::<f64>() / n;
         let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n;
-        c.stats.push((
-            col.clone(),
-            [
+        let (min, max) = match extremes.as_ref().and_then(|e| e.get(col)) {
+            Some(e) => (e.min, e.max),
+            None => (
                 v.iter().copied().fold(f64::INFINITY, f64::min),
                 v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                mean,
-                var.sqrt(),
-            ],
-        ));
+            ),
+        };
+        c.stats.push((col.clone(), [min, max, mean, var.sqrt()]));
     }
     Ok(c)
 }
 
 impl Collection {
-    /// The merged CSV: one row per run folder; its parameters, status, wall time, and
-    /// min/max/mean/std of every summary column.
+    /// The merged CSV: one row per run folder; its parameters, status, wall time, what min
+    /// and max are taken over (`every step` or `output steps`), and min/max/mean/std of every
+    /// summary column.
     pub fn csv(&self) -> String {
         let mut head: Vec<String> = vec!["folder".into(), "name".into()];
         head.extend(self.parameters.iter().cloned());
-        head.extend(["status", "wall_time_s"].map(String::from));
+        head.extend(["status", "wall_time_s", "extremes_over"].map(String::from));
         for c in &self.columns {
             for s in ["min", "max", "mean", "std"] {
                 head.push(format!("{c} {s}"));
@@ -484,6 +494,14 @@ impl Collection {
             }
             row.push(r.status.clone());
             row.push(format!("{:.3}", r.wall_time_s));
+            row.push(
+                if r.every_step {
+                    "every step"
+                } else {
+                    "output steps"
+                }
+                .to_string(),
+            );
             for c in &self.columns {
                 match r.stats.iter().find(|(n, _)| n == c) {
                     Some((_, s)) => row.extend(s.iter().map(|x| format!("{x:.10e}"))),

@@ -1,6 +1,7 @@
 //! `aqua collect DIR`: merges every run folder under DIR (the cases of `aqua sweep`, or any
 //! `aqua run` outputs) into one CSV table ([`aqua_sim::sweep::collect`]) and prints the
-//! governing case of every summary column.
+//! governing case of every summary column. Max and min of the load columns are over every
+//! accepted step where a run wrote its extremes (`extremes.csv`), else over its output steps.
 
 use std::path::PathBuf;
 
@@ -51,5 +52,20 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         done,
         out.display()
     );
+    let sampled: Vec<&str> = c
+        .runs
+        .iter()
+        .filter(|r| !r.every_step && !r.stats.is_empty())
+        .map(|r| r.folder.as_str())
+        .collect();
+    if sampled.is_empty() {
+        println!("max and min are over every accepted step (extremes.csv)");
+    } else {
+        println!(
+            "max and min are over every accepted step (extremes.csv), except in {} (written \
+             before extremes.csv existed: over output steps only, peaks between them are missed)",
+            sampled.join(", ")
+        );
+    }
     Ok(())
 }

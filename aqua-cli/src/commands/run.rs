@@ -1,7 +1,7 @@
 //! `aqua run scene.toml --out DIR`: static and/or dynamic solve with a progress bar, writing
 //! `DIR/<scene>.pvd` + a multiblock `.vtm` per output step (blocks in `DIR/<scene>_NNNNNN/`), the
-//! undeformed `DIR/<scene>_reference.vtm`, `DIR/open_in_paraview.py`, `DIR/summary.csv` and
-//! `DIR/run.json`.
+//! undeformed `DIR/<scene>_reference.vtm`, `DIR/open_in_paraview.py`, `DIR/summary.csv`,
+//! `DIR/extremes.csv` (the load extremes over every accepted step) and `DIR/run.json`.
 //!
 //! Ctrl-C, SIGTERM or a failed step stops cleanly: every step already written stays readable, the
 //! `.pvd` lists exactly those steps, `run.json` records why the run ended, and the exit code is
@@ -177,6 +177,9 @@ pub fn run_scene(
     print_step_control(&record);
     let mut json = run_json(&prep, &record, &result, &files);
     json["diagnostics"] = serde_json::json!(term.diagnostics);
+    if let Some(e) = &record.extremes {
+        files.write_extremes(e)?;
+    }
     files.write_json(&json)?;
     match record.ending {
         Ending::Completed => {
@@ -248,6 +251,7 @@ fn run_json(
         "status": record.ending.as_str(),
         "error": result.as_ref().err().map(|e| e.chain()),
         "final": record.last,
+        "extremes": record.extremes.as_ref().map(|e| e.to_json()),
         "output_steps": files.steps_written(),
         "pvd": files.pvd_path(),
         "paraview_script": files.dir().join("open_in_paraview.py"),
