@@ -401,6 +401,31 @@ fn outputs_are_read_back_by_an_independent_vtk_reader() {
     });
     let (ok, msg) = check_series(&python, &out.join("mooring-chain.pvd"), &expect, None);
     assert!(ok, "VTK read-back failed: {msg}");
+    // meshio, the usual Python reader, reads every block `.vtu` of every step (it stops at a
+    // string array in the field data).
+    let meshio_expect = serde_json::json!({
+        "points": 81,
+        "cells": {"line": 80},
+        "point_arrays": {"displacement": 3, "velocity": 3, "node_id": 1},
+        "line_arrays": {"tension": 1, "slack": 1, "axial_force": 1},
+        "times": times,
+    });
+    let ef = out.join("meshio.expect.json");
+    std::fs::write(&ef, meshio_expect.to_string()).unwrap();
+    let res = Command::new(&python)
+        .arg(root().join("tests/python/check_vtk.py"))
+        .arg(out.join("mooring-chain.pvd"))
+        .arg("--expect")
+        .arg(&ef)
+        .output()
+        .expect("cannot run AQUA_VTK_PYTHON");
+    let msg = format!(
+        "{}{}",
+        String::from_utf8_lossy(&res.stdout),
+        String::from_utf8_lossy(&res.stderr)
+    );
+    assert!(res.status.success(), "meshio read-back failed: {msg}");
+    assert!(msg.contains("2 blocks read by meshio"), "{msg}");
 }
 
 /// The Python interpreter with the `vtk` package (tests/python/requirements.txt), or a printed
