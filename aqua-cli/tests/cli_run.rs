@@ -448,6 +448,31 @@ fn outputs_are_read_back_by_an_independent_vtk_reader() {
     });
     let (ok, msg) = check_series(&python, &out.join("mooring-chain.pvd"), &expect, None);
     assert!(ok, "VTK read-back failed: {msg}");
+    // meshio, the usual Python reader, reads every block `.vtu` of every step (it stops at a
+    // string array in the field data).
+    let meshio_expect = serde_json::json!({
+        "points": 81,
+        "cells": {"line": 80},
+        "point_arrays": {"displacement": 3, "velocity": 3, "node_id": 1},
+        "line_arrays": {"tension": 1, "slack": 1, "axial_force": 1},
+        "times": times,
+    });
+    let ef = out.join("meshio.expect.json");
+    std::fs::write(&ef, meshio_expect.to_string()).unwrap();
+    let res = Command::new(&python)
+        .arg(root().join("tests/python/check_vtk.py"))
+        .arg(out.join("mooring-chain.pvd"))
+        .arg("--expect")
+        .arg(&ef)
+        .output()
+        .expect("cannot run AQUA_VTK_PYTHON");
+    let msg = format!(
+        "{}{}",
+        String::from_utf8_lossy(&res.stdout),
+        String::from_utf8_lossy(&res.stderr)
+    );
+    assert!(res.status.success(), "meshio read-back failed: {msg}");
+    assert!(msg.contains("2 blocks read by meshio"), "{msg}");
 }
 
 /// The Python interpreter with the `vtk` package (tests/python/requirements.txt), or a printed
@@ -643,6 +668,55 @@ fn on_path(name: &str) -> bool {
         .is_some_and(|paths| std::env::split_paths(&paths).any(|d| d.join(name).is_file()))
 }
 
+/// `pvbatch` under a display (a real one, or a virtual one through xvfb-run), or `None` (and
+/// a note) when neither is available.
+fn pvbatch_with_display(pv: &Path) -> Option<Command> {
+    if std::env::var_os("DISPLAY").is_some() {
+        return Some(Command::new(pv));
+    }
+    if on_path("xvfb-run") {
+        let mut c = Command::new("xvfb-run");
+        c.arg("-a").arg(pv);
+        return Some(c);
+    }
+    eprintln!("note: no display and no xvfb-run: the ParaView script runs without a picture");
+    None
+}
+
+/// Width and height of a PNG file (its IHDR chunk).
+fn png_size(png: &[u8]) -> (u32, u32) {
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && &png[12..16] == b"IHDR");
+    let be = |b: &[u8]| u32::from_be_bytes([b[0], b[1], b[2], b[3]]);
+    (be(&png[16..20]), be(&png[20..24]))
+}
+
+/// Runs `cmd` and asserts it succeeds. `xvfb-run -a` can lose the race for a display number to
+/// another X server starting at the same moment (another test, another user); ParaView then
+/// reports "bad X server connection" before running anything, and the command is run again
+/// (at most 3 times).
+fn run_ok(mut cmd: Command) {
+    for attempt in 1..=3 {
+        let res = cmd.output().unwrap();
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&res.stdout),
+            String::from_utf8_lossy(&res.stderr)
+        );
+        let lost_display =
+            text.contains("bad X server connection") || text.contains("Xvfb failed to start");
+        if res.status.success() || !lost_display || attempt == 3 {
+            assert!(res.status.success(), "{text}");
+            return;
+        }
+        eprintln!("note: the virtual display was lost to another X server; running again");
+        std::thread::sleep(Duration::from_millis(500 * attempt));
+    }
+}
+
+fn read_json(p: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
 #[test]
 fn paraview_script_opens_the_series_in_real_paraview() {
     let Some(pv) = pvbatch() else { return };
@@ -652,31 +726,16 @@ fn paraview_script_opens_the_series_in_real_paraview() {
     run_quiet(&scene, &out);
     let report = dir.join("report.json");
     let shot = dir.join("view.png");
-    // A picture needs a display: a real one, or a virtual one through xvfb-run.
-    let display = std::env::var_os("DISPLAY").is_some();
-    let xvfb = !display && on_path("xvfb-run");
-    let mut cmd = if xvfb {
-        let mut c = Command::new("xvfb-run");
-        c.arg("-a").arg(&pv);
-        c
-    } else {
-        Command::new(&pv)
-    };
+    let picture = pvbatch_with_display(&pv);
+    let with_picture = picture.is_some();
+    let mut cmd = picture.unwrap_or_else(|| Command::new(&pv));
     cmd.arg(out.join("open_in_paraview.py"))
         .args(["--warp", "1", "--last", "--report"])
         .arg(&report);
-    if display || xvfb {
+    if with_picture {
         cmd.arg("--screenshot").arg(&shot);
-    } else {
-        eprintln!("note: no display and no xvfb-run: the ParaView script runs without a picture");
     }
-    let res = cmd.output().unwrap();
-    assert!(
-        res.status.success(),
-        "{}{}",
-        String::from_utf8_lossy(&res.stdout),
-        String::from_utf8_lossy(&res.stderr)
-    );
+    run_ok(cmd);
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
@@ -694,17 +753,35 @@ fn paraview_script_opens_the_series_in_real_paraview() {
     for a in ["tension", "slack", "axial_force"] {
         assert!(lines.contains(&a), "{a} missing: {lines:?}");
     }
-    // Reference + Append Attributes + Warp By Vector (scale 1) reproduces the computed shape
-    // (ParaView's warp works in single precision: 1e-5 m on a 100 m model).
-    let err = r["warp_max_error"].as_f64().unwrap();
-    assert!(err < 1e-5, "warp from the reference is off by {err} m");
-    if display || xvfb {
+    // --warp 1 is the computed shape at the first and the last step.
+    for w in r["warp"].as_array().unwrap() {
+        let err = w["max_error_vs_series"].as_f64().unwrap();
+        assert!(err <= 1e-9, "warp x1 is off the series by {err} m: {w}");
+    }
+    // The view is 1600 × 900 and the screenshot has that size, the colour bar inside it.
+    assert_eq!(r["view_size"], serde_json::json!([1600, 900]), "{r}");
+    let bar = &r["scalar_bar"];
+    let (x, y) = (
+        bar["position"][0].as_f64().unwrap(),
+        bar["position"][1].as_f64().unwrap(),
+    );
+    let len = bar["length"].as_f64().unwrap();
+    assert!(
+        (0.0..0.95).contains(&x) && y >= 0.0 && y + len <= 1.0,
+        "colour bar outside the view: {bar}"
+    );
+    if with_picture {
         let png = std::fs::read(&shot).unwrap();
-        assert!(
-            png.starts_with(b"\x89PNG") && png.len() > 10_000,
-            "{} bytes",
-            png.len()
-        );
+        assert_eq!(png_size(&png), (1600, 900));
+        assert!(png.len() > 10_000, "{} bytes", png.len());
+        // Another size on request.
+        let small = dir.join("small.png");
+        let mut cmd = pvbatch_with_display(&pv).unwrap();
+        cmd.arg(out.join("open_in_paraview.py"))
+            .args(["--size", "800x600", "--screenshot"])
+            .arg(&small);
+        run_ok(cmd);
+        assert_eq!(png_size(&std::fs::read(&small).unwrap()), (800, 600));
     }
     // As the GUI runs it (no __file__, empty argv[0], another working directory): the script
     // finds the run through the directory `aqua run` recorded in it.
@@ -734,6 +811,193 @@ fn paraview_script_opens_the_series_in_real_paraview() {
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report2).unwrap()).unwrap();
     assert_eq!(r["blocks"], serde_json::json!(MOORED_BLOCKS));
+}
+
+/// The moored cage of [`moored_cage_scene`] in its waves, 2 s, an output every second: a series
+/// whose shape changes from step to step.
+fn moored_cage_in_waves(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/moored-cage.toml"))
+        .unwrap()
+        .replace("element_length = 4.0", "element_length = 5.0")
+        .replace("top_ring[6]", "top_ring[4]")
+        .replace("top_ring[12]", "top_ring[8]")
+        .replace("top_ring[18]", "top_ring[12]")
+        .replace("t_end = 60.0", "t_end = 2.0");
+    assert!(text.contains("t_end = 2.0") && text.contains("[sea.waves]"));
+    let p = dir.join("moored-waves.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn paraview_warp_follows_the_time_step() {
+    let Some(pv) = pvbatch() else { return };
+    let dir = scratch("paraview-warp");
+    let scene = moored_cage_in_waves(&dir);
+    let out = dir.join("out");
+    run_quiet(&scene, &out);
+    let warp = |scale: &str| {
+        let report = dir.join(format!("warp{scale}.json"));
+        let mut cmd = Command::new(&pv);
+        cmd.arg(out.join("open_in_paraview.py"))
+            .args(["--warp", scale, "--last", "--report"])
+            .arg(&report);
+        run_ok(cmd);
+        let r = read_json(&report);
+        assert_eq!(r["times"], serde_json::json!([0.0, 1.0, 2.0]), "{r}");
+        let w = r["warp"].as_array().unwrap().clone();
+        assert_eq!(w.len(), 2, "{r}");
+        assert_eq!(
+            (w[0]["t"].as_f64(), w[1]["t"].as_f64()),
+            (Some(0.0), Some(2.0))
+        );
+        w
+    };
+    // S = 1: the warped points are the series' points, at t = 0 and at t_end, and they move
+    // between the two as the series does.
+    let w1 = warp("1");
+    for w in &w1 {
+        let err = w["max_error_vs_series"].as_f64().unwrap();
+        assert!(err <= 1e-9, "warp x1 off the series by {err} m: {w}");
+    }
+    let moved = w1[1]["series_moved_since_first"].as_f64().unwrap();
+    assert!(
+        moved > 0.05,
+        "the series barely moves ({moved} m): no test of time"
+    );
+    let warp_moved = w1[1]["warp_moved_since_first"].as_f64().unwrap();
+    assert!(
+        (warp_moved - moved).abs() <= 1e-9,
+        "{warp_moved} vs {moved}"
+    );
+    // S = 4: X + 4 d at both times, so the warped geometry moves 4 times as far as the
+    // series (X does not move).
+    let w4 = warp("4");
+    for w in &w4 {
+        let err = w["max_error_vs_reference_plus_scaled_displacement"]
+            .as_f64()
+            .unwrap();
+        assert!(err <= 1e-9, "warp x4 off X + 4 d by {err} m: {w}");
+    }
+    let warp_moved = w4[1]["warp_moved_since_first"].as_f64().unwrap();
+    assert!(
+        (warp_moved - 4.0 * moved).abs() <= 1e-9 * (1.0 + moved),
+        "warp x4 moved {warp_moved} m, the series {moved} m"
+    );
+}
+
+/// A 1 × 2 farm, statics only: block names from object names with `/`.
+fn small_farm(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/farm.toml")).unwrap();
+    let a = text.find("[sea.waves]").unwrap();
+    let b = text.find("[[farm]]").unwrap();
+    let c = text.find("[analysis]").unwrap();
+    let text = format!(
+        "{}{}[analysis]\nkind = \"static\"\n",
+        &text[..a],
+        &text[b..c]
+    )
+    .replace("rows = 2 ", "rows = 1 ")
+    .replace("columns = 3 ", "columns = 2 ");
+    assert!(text.contains("rows = 1 ") && text.contains("columns = 2 "));
+    let p = dir.join("farm.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// The cells of every dataset a `.vtm` lists, by `block/dataset` path (read from the `.vtu`
+/// files' `NumberOfCells`).
+fn vtm_cells(vtm: &Path) -> Vec<(String, u64)> {
+    let text = std::fs::read_to_string(vtm).unwrap();
+    let attr = |line: &str, key: &str| -> String {
+        let k = format!("{key}=\"");
+        let i = line.find(&k).unwrap() + k.len();
+        line[i..].split('"').next().unwrap().to_string()
+    };
+    let mut block = String::new();
+    let mut out = Vec::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("<Block ") {
+            block = attr(line, "name");
+        } else if line.trim_start().starts_with("<DataSet ") {
+            let vtu =
+                std::fs::read_to_string(vtm.parent().unwrap().join(attr(line, "file"))).unwrap();
+            let n: u64 = attr(&vtu, "NumberOfCells").parse().unwrap();
+            out.push((format!("{block}/{}", attr(line, "name")), n));
+        }
+    }
+    out
+}
+
+#[test]
+fn readme_block_selectors_work_for_a_farm_in_real_paraview() {
+    // The README's selectors, literally.
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let selectors: Vec<&str> = readme
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|s| s.starts_with("/Root/") || s.starts_with("//"))
+        .collect();
+    for want in [
+        "/Root/farm_cage_r1c1",
+        "/Root/farm_cage_r1c1/lines",
+        "//panels",
+    ] {
+        assert!(
+            selectors.contains(&want),
+            "README lacks {want}: {selectors:?}"
+        );
+    }
+    let dir = scratch("paraview-farm");
+    let scene = small_farm(&dir);
+    let out = dir.join("out");
+    run_quiet(&scene, &out);
+    let vtm = out.join("farm_000000.vtm");
+    let cells = vtm_cells(&vtm);
+    // run.json maps the blocks to the objects.
+    let names = &read_json(&out.join("run.json"))["names"];
+    let blocks: Vec<String> = cells.iter().map(|(b, _)| b.clone()).collect();
+    assert_eq!(names["block_names"], serde_json::json!(blocks));
+    let k = blocks
+        .iter()
+        .position(|b| b == "farm_cage_r1c1/lines")
+        .unwrap();
+    assert_eq!(names["block_objects"][k], "farm/cage_r1c1");
+    let Some(pv) = pvbatch() else { return };
+    let result = dir.join("selected.json");
+    let farm_selectors: Vec<&str> = selectors
+        .iter()
+        .copied()
+        .filter(|s| s.starts_with("//") || s.starts_with("/Root/farm"))
+        .collect();
+    let mut cmd = Command::new(&pv);
+    cmd.arg(root().join("tests/python/paraview_select.py"))
+        .arg(&vtm)
+        .arg(&result)
+        .args(&farm_selectors);
+    run_ok(cmd);
+    let r = read_json(&result);
+    for sel in farm_selectors {
+        // What the selector names: a block (all its datasets), a dataset, or a dataset kind
+        // in every block.
+        let want: u64 = if let Some(kind) = sel.strip_prefix("//") {
+            cells
+                .iter()
+                .filter(|(b, _)| b.ends_with(&format!("/{kind}")))
+                .map(|c| c.1)
+                .sum()
+        } else {
+            let path = sel.strip_prefix("/Root/").unwrap();
+            cells
+                .iter()
+                .filter(|(b, _)| b == path || b.starts_with(&format!("{path}/")))
+                .map(|c| c.1)
+                .sum()
+        };
+        assert!(want > 0, "{sel} names nothing in the farm's files");
+        assert_eq!(r["cells"][sel].as_u64(), Some(want), "{sel}: {r}");
+    }
 }
 
 #[test]

@@ -80,6 +80,28 @@ fn gnu_parallel() -> bool {
     found
 }
 
+/// Every case folder of a sweep holds `case.json` and an `aqua.log` in which the case says
+/// what it ran and how it ended (whichever engine started it).
+fn assert_case_logs(out: &Path, n: usize, engine: &str) {
+    for k in 0..n {
+        let dir = out.join(format!("case_{k:04}"));
+        assert!(
+            dir.join("case.json").is_file(),
+            "{engine}: {dir:?} has no case.json"
+        );
+        let log = std::fs::read_to_string(dir.join("aqua.log")).unwrap_or_default();
+        let end = if k == 6 { "failed" } else { "completed" };
+        assert!(
+            log.contains(&format!("--case {k} ")) && log.contains(&format!("case {k} (")),
+            "{engine}: case {k}'s aqua.log does not say what ran: {log:?}"
+        );
+        assert!(
+            log.contains(&format!("): {end} in ")),
+            "{engine}: case {k}'s aqua.log does not say it {end}: {log:?}"
+        );
+    }
+}
+
 #[test]
 fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
     let d = scratch("sweep", "engines");
@@ -105,6 +127,7 @@ fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
     );
     let table = collected(&local);
     assert_eq!(table.len(), 1 + 7);
+    assert_case_logs(&local, 7, "--local");
     let status = table[0].iter().position(|h| h == "status").unwrap();
     let statuses: Vec<&str> = table[1..].iter().map(|r| r[status].as_str()).collect();
     assert_eq!(
@@ -168,6 +191,13 @@ fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
     std::fs::write(&script, &o.stdout).unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("#SBATCH --array=0-6"), "{text}");
+    // Slurm's own output of each task goes into the case's folder, which must exist before
+    // the task starts (Slurm does not create it).
+    assert!(
+        text.contains(&format!("#SBATCH --output={}/case_%4a/", slurm.display())),
+        "{text}"
+    );
+    assert!((0..7).all(|k| slurm.join(format!("case_{k:04}")).is_dir()));
     let syntax = Command::new("bash")
         .arg("-n")
         .arg(&script)
@@ -185,6 +215,7 @@ fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
         assert_eq!(s.success(), k != 6, "task {k}");
     }
     assert_eq!(collected(&slurm), table, "Slurm and --local tables differ");
+    assert_case_logs(&slurm, 7, "Slurm");
 
     // GNU parallel, fed the emitted command lines.
     if gnu_parallel() {
@@ -215,6 +246,7 @@ fn local_gnu_parallel_and_slurm_give_the_same_collected_table() {
             table,
             "GNU parallel and --local tables differ"
         );
+        assert_case_logs(&par, 7, "GNU parallel");
     }
 }
 

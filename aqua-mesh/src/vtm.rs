@@ -4,8 +4,8 @@
 //! # Blocks
 //!
 //! Every object of the mesh (a cage, a panel, a line, an imported mesh; every copy of a
-//! multi-origin object separately, labelled `name#k`) is one top-level block named after it, and
-//! holds up to three datasets named after their kind:
+//! multi-origin object separately) is one top-level block, and holds up to three datasets named
+//! after their kind:
 //!
 //! * `lines`: its line elements as `VTK_LINE` (twines, ropes, rings, chains), with the cell
 //!   arrays of the caller's `line` arrays (tension, …);
@@ -14,9 +14,18 @@
 //! * `points`: every node the object owns, once, as `VTK_VERTEX`; the point-data of all
 //!   `points` datasets together is the point data of the whole model, node by node.
 //!
+//! A block is named after its object in the characters ParaView keeps in its hierarchy (ASCII
+//! letters, digits and `_`; ParaView 5.11 silently drops every other character, so a block named
+//! `farm/cage_r1c1` would be selected only as `/Root/farmcage_r1c1`): every other character of
+//! the object's name becomes `_` (`farm/cage_r1c1` → `farm_cage_r1c1`, `m-east` → `m_east`),
+//! copy k of a multi-origin object is `name_k` (the scene's `name#k`), a name starting with a
+//! digit gets a leading `_` (as ParaView would), and a name that two objects would share gets
+//! `_2`, `_3`, … on the later ones. [`NameTables::block_names`] lists the block paths and
+//! [`NameTables::block_objects`] the object each one belongs to.
+//!
 //! So ParaView's *Multiblock Inspector* lists `cage0` → `lines`, `panels`, `points`, `m_east` →
 //! `lines`, `points`, and each can be switched on and off by name; selectors are
-//! `/Root/cage0/lines`, `//panels`, …
+//! `/Root/cage0/lines`, `/Root/farm_cage_r1c1`, `//panels`, …
 //!
 //! `lines` and `panels` datasets hold the nodes their cells use (a fairlead shared with a cage
 //! appears in both objects' datasets); the `points` datasets partition the nodes. The node
@@ -26,16 +35,18 @@
 //! # Points
 //!
 //! Point coordinates are the positions passed to [`MultiblockSeries::write_step`] (for a run,
-//! the deformed positions). The undeformed geometry is written once, by
+//! the deformed positions x = X + `displacement`). The undeformed geometry X is written once, by
 //! [`MultiblockSeries::write_reference`], as `<stem>_reference.vtm` with the same blocks in the
-//! same order and the same points: *Append Attributes* (reference, step) followed by *Warp By
-//! Vector* (`displacement`) reproduces, or exaggerates, the deformed shape.
+//! same order and the same points. *Warp By Vector* (`displacement`, scale S − 1) applied to the
+//! series gives X + S·`displacement` at every time step: the deformation scaled by S.
 //!
 //! # Field data (every dataset)
 //!
-//! `TimeValue` (the step time [s]), `object_names` (index = `object_id`), `group_names`
-//! (`object/group`, index = `group_id`), `role_names` (index = `role_id`) and `block_name`
-//! (`cage0/lines`).
+//! `TimeValue` (the step time [s]) only: numbers, which every VTK reader (meshio included)
+//! reads. The name tables — `object_names` (index = `object_id`), `group_names`
+//! (`object/group`, index = `group_id`), `role_names` (index = `role_id`), `block_names`,
+//! `block_objects` ([`NameTables`]) — are the caller's to write (`aqua run` puts them in
+//! `run.json`); the block names themselves are in the `.vtm` hierarchy.
 //!
 //! # Files
 //!
@@ -166,7 +177,8 @@ impl BlockKind {
 /// One dataset of the layout.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockSpec {
-    /// Object label (`cage0`, or `cage0#1` for copy 1 of a multi-origin object).
+    /// The block's name: the object's name in the characters ParaView keeps (`cage0`,
+    /// `farm_cage_r1c1`, `cage0_1` for copy 1 of a multi-origin object; see the module doc).
     pub object_label: String,
     /// Kind.
     pub kind: BlockKind,
@@ -183,7 +195,7 @@ pub struct BlockSpec {
 }
 
 impl BlockSpec {
-    /// `cage0/lines`.
+    /// `cage0/lines`: the path of the dataset in the multiblock hierarchy.
     pub fn name(&self) -> String {
         format!("{}/{}", self.object_label, self.kind.as_str())
     }
@@ -206,6 +218,26 @@ fn file_safe(s: &str) -> String {
             }
         })
         .collect()
+}
+
+/// `name` in the characters ParaView keeps in a block hierarchy (ASCII letters, digits, `_`):
+/// every other character becomes `_`, and a leading digit gets a `_` in front (see the module
+/// doc).
+pub fn paraview_block_name(name: &str) -> String {
+    let mut s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
+        s.insert(0, '_');
+    }
+    s
 }
 
 impl BlockLayout {
@@ -239,11 +271,17 @@ impl BlockLayout {
                 .objects
                 .get(o as usize)
                 .map_or_else(|| format!("object{o}"), |x| x.name.clone());
-            let label = if copies(o) > 1 {
-                format!("{name}#{c}")
+            let wanted = if copies(o) > 1 {
+                paraview_block_name(&format!("{name}#{c}"))
             } else {
-                name
+                paraview_block_name(&name)
             };
+            let mut label = wanted.clone();
+            let mut k = 2;
+            while blocks.iter().any(|b: &BlockSpec| b.object_label == label) {
+                label = format!("{wanted}_{k}");
+                k += 1;
+            }
             let lines: Vec<usize> = (0..mesh.lines.len())
                 .filter(|&i| (mesh.lines[i].object, mesh.lines[i].copy) == (o, c))
                 .collect();
@@ -311,8 +349,11 @@ pub struct NameTables {
     pub group_names: Vec<String>,
     /// Role names, index = `role_id`.
     pub role_names: Vec<String>,
-    /// Block names (`cage0/lines`) in file order.
+    /// Block paths (`cage0/lines`, `farm_cage_r1c1/panels`) in file order.
     pub block_names: Vec<String>,
+    /// The object name of every entry of `block_names` (`farm/cage_r1c1`; a copy of a
+    /// multi-origin object as `name#k`).
+    pub block_objects: Vec<String>,
 }
 
 impl NameTables {
@@ -341,6 +382,26 @@ impl NameTables {
                 })
                 .collect(),
             block_names: layout.blocks.iter().map(BlockSpec::name).collect(),
+            block_objects: layout
+                .blocks
+                .iter()
+                .map(|b| {
+                    let name = mesh
+                        .objects
+                        .get(b.object as usize)
+                        .map_or_else(|| format!("object{}", b.object), |o| o.name.clone());
+                    let copies = layout
+                        .blocks
+                        .iter()
+                        .filter(|x| x.object == b.object && x.copy != b.copy)
+                        .count();
+                    if copies > 0 {
+                        format!("{name}#{}", b.copy)
+                    } else {
+                        name
+                    }
+                })
+                .collect(),
         }
     }
 }
@@ -402,22 +463,6 @@ fn array_subset(out: &mut String, a: &BlockArray, idx: &[usize]) {
             data_array(out, "Int32", &a.name, 1, &i32_bytes(&sub));
         }
     }
-}
-
-fn string_array(out: &mut String, name: &str, values: &[String]) {
-    let mut bytes = Vec::new();
-    for v in values {
-        bytes.extend_from_slice(v.as_bytes());
-        bytes.push(0);
-    }
-    let _ = write!(
-        out,
-        "      <Array type=\"String\" Name=\"{}\" NumberOfTuples=\"{}\" format=\"binary\">\n        ",
-        xml_escape(name),
-        values.len(),
-    );
-    b64_into(out, &bytes);
-    out.push_str("\n      </Array>\n");
 }
 
 /// Write `path` by filling a temporary file next to it and renaming it into place (no fsync:
@@ -518,7 +563,7 @@ struct BlockTemplate {
 }
 
 impl BlockTemplate {
-    fn new(mesh: &Mesh, spec: &BlockSpec, names: &NameTables, nd: &NodeData) -> Self {
+    fn new(mesh: &Mesh, spec: &BlockSpec, nd: &NodeData) -> Self {
         let mut local = std::collections::HashMap::with_capacity(spec.nodes.len());
         for (k, &n) in spec.nodes.iter().enumerate() {
             local.insert(n, k as i64);
@@ -561,10 +606,6 @@ impl BlockTemplate {
          <FieldData>\n",
         );
         parts[0] = std::mem::take(&mut s);
-        string_array(&mut s, "block_name", &[spec.name()]);
-        string_array(&mut s, "object_names", &names.object_names);
-        string_array(&mut s, "group_names", &names.group_names);
-        string_array(&mut s, "role_names", &names.role_names);
         let _ = writeln!(
             s,
             "    </FieldData>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
@@ -874,7 +915,7 @@ impl MultiblockSeries {
         let templates = layout
             .blocks
             .iter()
-            .map(|b| BlockTemplate::new(mesh, b, &names, &nodes))
+            .map(|b| BlockTemplate::new(mesh, b, &nodes))
             .collect();
         let pvd_path = dir.join(format!("{stem}.pvd"));
         // A `.pvd` left by an earlier run lists files that were just removed.

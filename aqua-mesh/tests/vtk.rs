@@ -257,13 +257,17 @@ fn multiblock_series_names_objects_copies_and_kinds() {
     assert_eq!(
         names,
         [
-            "pen#0/lines",
-            "pen#0/panels",
-            "pen#0/points",
-            "pen#1/lines",
-            "pen#1/panels",
-            "pen#1/points"
+            "pen_0/lines",
+            "pen_0/panels",
+            "pen_0/points",
+            "pen_1/lines",
+            "pen_1/panels",
+            "pen_1/points"
         ]
+    );
+    assert_eq!(
+        s.names().block_objects,
+        ["pen#0", "pen#0", "pen#0", "pen#1", "pen#1", "pen#1"]
     );
     let mut nodes: Vec<usize> = s
         .layout()
@@ -302,7 +306,7 @@ fn multiblock_series_names_objects_copies_and_kinds() {
         assert_eq!(pvd.matches("<DataSet").count(), k + 1, "{pvd}");
         assert!(pvd.ends_with("  </Collection>\n</VTKFile>\n"), "{pvd}");
         let vtm = std::fs::read_to_string(dir.join(format!("farm_{k:06}.vtm"))).unwrap();
-        assert!(vtm.contains("<Block index=\"1\" name=\"pen#1\">"), "{vtm}");
+        assert!(vtm.contains("<Block index=\"1\" name=\"pen_1\">"), "{vtm}");
         assert!(vtm.contains(&format!(
             "name=\"panels\" file=\"farm_{k:06}/pen_1_panels.vtu\""
         )));
@@ -333,5 +337,50 @@ fn multiblock_series_names_objects_copies_and_kinds() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
     assert!(dir.join("notes.txt").exists() && dir.join("farm_reference.vtm").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Block names use only the characters ParaView 5.11 keeps in its hierarchy (ASCII letters,
+/// digits, `_`; it drops `/`, `#`, `-`, `.`, `:` and prefixes a leading digit with `_`), stay
+/// unique, and `block_objects` maps them back to the object names.
+#[test]
+fn block_names_are_names_paraview_keeps() {
+    use aqua_mesh::MultiblockSeries;
+    let cage = |name: &str| {
+        let mut p = CageParams::new(CageType::Cct);
+        p.name = Some(name.into());
+        p.build().unwrap()
+    };
+    let mut m = cage("farm/cage_r1c1");
+    for name in ["farm_cage_r1c1", "1st-cage.a:b"] {
+        m.append(cage(name));
+    }
+    let dir = tmpdir("vtm-names");
+    let s = MultiblockSeries::new(&dir, "farm", &m).unwrap();
+    let tops: Vec<&str> = s
+        .layout()
+        .blocks
+        .iter()
+        .map(|b| b.object_label.as_str())
+        .collect();
+    let mut unique = tops.clone();
+    unique.dedup();
+    assert_eq!(
+        unique,
+        ["farm_cage_r1c1", "farm_cage_r1c1_2", "_1st_cage_a_b"]
+    );
+    for b in &s.names().block_names {
+        assert!(
+            b.split('/').all(
+                |part| part.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                    && !part.starts_with(|c: char| c.is_ascii_digit())
+            ),
+            "{b}"
+        );
+    }
+    let objects = &s.names().block_objects;
+    assert_eq!(objects.len(), s.names().block_names.len());
+    assert_eq!(objects[0], "farm/cage_r1c1");
+    assert_eq!(objects.last().unwrap(), "1st-cage.a:b");
     let _ = std::fs::remove_dir_all(&dir);
 }

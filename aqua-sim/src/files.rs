@@ -216,7 +216,7 @@ impl RunFiles {
         &self.dir
     }
 
-    /// Object, group, role and block names (the field data of every block; `run.json`).
+    /// Object, group, role and block names (written into `run.json`).
     pub fn names(&self) -> &NameTables {
         &self.names
     }

@@ -12,17 +12,19 @@
 # carry a point mass (sinkers, weights, [[point]] bodies) as spheres.
 #
 # Options:
-#   --warp S          show the deformation scaled by S: the undeformed geometry
-#                     (<scene>_reference.vtm) + Append Attributes + Warp By Vector (displacement);
-#                     S = 1 gives the computed shape (the points of the series themselves).
+#   --warp S          show the deformation scaled by S at every time step: X + S * displacement
+#                     (X the undeformed geometry); S = 1 gives the computed shape (the points of
+#                     the series themselves), S = 0 the undeformed geometry.
 #   --last            go to the last output step.
 #   --screenshot PNG  save a picture of the view and quit.
-#   --report JSON     write what was opened (blocks, time steps, tension range, warp error) to
-#                     JSON and quit (used by aqua's tests).
+#   --size WxH        the view's size in pixels (default 1600x900; also the screenshot's size).
+#   --report JSON     write what was opened (blocks, time steps, tension range, the warp checked
+#                     at the first and last step) to JSON and quit (used by aqua's tests).
 #
-# Points of the series hold the deformed positions; `displacement` is x - X. Do not apply
-# Warp By Vector to the series itself (that adds the displacement twice); --warp does it the
-# right way, from the reference geometry.
+# Points of the series hold the deformed positions x = X + displacement. So --warp S is Warp By
+# Vector (`displacement`) with scale factor S - 1 applied to the series itself: x + (S - 1) d =
+# X + S d, recomputed whenever the time changes. (Warp By Vector with scale S on the series
+# would add the displacement twice.)
 
 import glob
 import json
@@ -31,7 +33,6 @@ import sys
 
 from paraview import servermanager as sm
 from paraview.simple import (
-    AppendAttributes,
     ColorBy,
     ExtractBlock,
     GetActiveViewOrCreate,
@@ -50,7 +51,7 @@ from paraview.simple import (
 
 
 def parse_args(argv):
-    opts = {"warp": None, "last": False, "screenshot": None, "report": None}
+    opts = {"warp": None, "last": False, "screenshot": None, "report": None, "size": [1600, 900]}
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -61,6 +62,16 @@ def parse_args(argv):
             opts["last"] = True
         elif a == "--screenshot" and i + 1 < len(argv):
             opts["screenshot"] = argv[i + 1]
+            i += 1
+        elif a == "--size" and i + 1 < len(argv):
+            try:
+                w, h = (int(v) for v in argv[i + 1].lower().split("x"))
+            except ValueError:
+                raise SystemExit(f"open_in_paraview: --size {argv[i + 1]}: expected WxH, "
+                                 "e.g. 1600x900")
+            if w < 200 or h < 200:
+                raise SystemExit(f"open_in_paraview: --size {argv[i + 1]}: at least 200x200")
+            opts["size"] = [w, h]
             i += 1
         elif a == "--report" and i + 1 < len(argv):
             opts["report"] = argv[i + 1]
@@ -135,17 +146,19 @@ def main(argv):
     source = series
     warp = None
     if opts["warp"] is not None:
-        ref = XMLMultiBlockDataReader(
-            registrationName=f"{stem}_reference",
-            FileName=[os.path.join(d, f"{stem}_reference.vtm")],
-        )
-        both = AppendAttributes(registrationName="reference + step", Input=[ref, series])
-        warp = WarpByVector(registrationName=f"warp x{opts['warp']:g}", Input=both)
+        # x + (S - 1) d = X + S d from the series alone, so it follows the time. (Append
+        # Attributes of the time-independent reference and the series does not: it keeps the
+        # displacement of the first time it ran.)
+        warp = WarpByVector(registrationName=f"warp x{opts['warp']:g}", Input=series)
         warp.Vectors = ["POINTS", "displacement"]
-        warp.ScaleFactor = opts["warp"]
+        warp.ScaleFactor = opts["warp"] - 1.0
         source = warp
 
     view = GetActiveViewOrCreate("RenderView")
+    # A fixed view size: a screenshot is then rendered at the size the colour bar was laid out
+    # for (saving a small default view at a large resolution scales the bar's text up).
+    view.ViewSize = opts["size"]
+    view.OrientationAxesVisibility = 1
     lines = ExtractBlock(registrationName="lines", Input=source, Selectors=["//lines"])
     panels = ExtractBlock(registrationName="panels", Input=source, Selectors=["//panels"])
     points = ExtractBlock(registrationName="points", Input=source, Selectors=["//points"])
@@ -169,8 +182,16 @@ def main(argv):
     lut.RescaleTransferFunction(0.0, max(tmax, 1e-9))
     lut.AutomaticRescaleRangeMode = "Never"
     ld.SetScalarBarVisibility(view, True)
-    GetScalarBar(lut, view).Title = "tension [N]"
-    GetScalarBar(lut, view).ComponentTitle = ""
+    bar = GetScalarBar(lut, view)
+    bar.Title = "tension [N]"
+    bar.ComponentTitle = ""
+    bar.WindowLocation = "Any Location"
+    bar.Orientation = "Vertical"
+    bar.Position = [0.89, 0.1]
+    bar.ScalarBarLength = 0.6
+    bar.TitleFontSize = 16
+    bar.LabelFontSize = 14
+    bar.RangeLabelFormat = "%-#.3g"
     ld.LineWidth = 3.0
     ld.RenderLinesAsTubes = 1
 
@@ -193,6 +214,9 @@ def main(argv):
     # A report alone needs no window (pvbatch on a machine without a display).
     if not opts["report"] or opts["screenshot"]:
         ResetCamera(view)
+        # ResetCamera fits the bounding sphere; the model then fills about a third of the
+        # frame: come closer.
+        view.GetActiveCamera().Dolly(1.6)
         Render(view)
 
     if opts["report"]:
@@ -213,22 +237,66 @@ def main(argv):
             ),
         }
         if warp is not None:
-            warp.UpdatePipeline(t_now)
-            warped = dict(leaves(sm.Fetch(warp)))
-            err = 0.0
-            for name, b in blocks:
-                w = warped[name]
-                for k in range(b.GetNumberOfPoints()):
-                    p = b.GetPoint(k)
-                    q = w.GetPoint(k)
-                    err = max(err, max(abs(p[j] - q[j]) for j in range(3)))
             report["warp_scale"] = opts["warp"]
-            report["warp_max_error"] = err
+            report["warp"] = warp_check(d, stem, series, warp, opts["warp"],
+                                        [times[0], times[-1]])
+        report["view_size"] = list(view.ViewSize)
+        report["scalar_bar"] = {
+            "position": list(bar.Position),
+            "length": float(bar.ScalarBarLength),
+            "title": str(bar.Title),
+        }
         with open(opts["report"], "w") as f:
             json.dump(report, f, indent=1)
     if opts["screenshot"]:
-        SaveScreenshot(opts["screenshot"], view, ImageResolution=[1200, 800])
+        SaveScreenshot(opts["screenshot"], view, ImageResolution=opts["size"])
     return view
+
+
+def points_of(data):
+    """{block: [(x, y, z), ...]} of a fetched multiblock."""
+    return {name: [b.GetPoint(k) for k in range(b.GetNumberOfPoints())]
+            for name, b in leaves(data)}
+
+
+def warp_check(d, stem, series, warp, scale, times):
+    """At each of `times`: the warped points against the series' own points x and against
+    X + scale * displacement (X read from <stem>_reference.vtm), and how far the warped
+    geometry moved from the first of `times` (for the report of --report)."""
+    ref = XMLMultiBlockDataReader(FileName=[os.path.join(d, f"{stem}_reference.vtm")])
+    ref.UpdatePipeline()
+    x0 = points_of(sm.Fetch(ref))
+    out = []
+    first = None
+    for t in times:
+        series.UpdatePipeline(t)
+        step = sm.Fetch(series)
+        x = points_of(step)
+        disp = {name: [b.GetPointData().GetArray("displacement").GetTuple3(k)
+                       for k in range(b.GetNumberOfPoints())] for name, b in leaves(step)}
+        warp.UpdatePipeline(t)
+        w = points_of(sm.Fetch(warp))
+        err_series = err_formula = 0.0
+        for name, pts in x.items():
+            for k, p in enumerate(pts):
+                q = w[name][k]
+                want = [x0[name][k][j] + scale * disp[name][k][j] for j in range(3)]
+                err_series = max(err_series, max(abs(p[j] - q[j]) for j in range(3)))
+                err_formula = max(err_formula, max(abs(want[j] - q[j]) for j in range(3)))
+        if first is None:
+            first = (x, w)
+        moved_series = max(max(abs(p[j] - first[0][n][k][j]) for j in range(3))
+                           for n, pts in x.items() for k, p in enumerate(pts))
+        moved_warp = max(max(abs(p[j] - first[1][n][k][j]) for j in range(3))
+                         for n, pts in w.items() for k, p in enumerate(pts))
+        out.append({
+            "t": t,
+            "max_error_vs_series": err_series,
+            "max_error_vs_reference_plus_scaled_displacement": err_formula,
+            "series_moved_since_first": moved_series,
+            "warp_moved_since_first": moved_warp,
+        })
+    return out
 
 
 _view = main(sys.argv[1:])

@@ -5,8 +5,12 @@ Usage:
   check_vtk.py FILE [--expect EXPECT.json] [--points N] [--cells line=N,triangle=N,quad=N]
                [--point-arrays name:ncomp,...] [--cell-arrays name:ncomp,...] [--times t0,t1,...]
 
-FILE is a .vtu (checked directly) or a .pvd (every listed file is checked, and the time values
-are compared with --times). Expectations given on the command line override those in the JSON
+FILE is a .vtu (checked directly), a .vtm (a multiblock step of `aqua run`: every block .vtu it
+lists is read) or a .pvd (every listed file is checked, and the time values are compared with
+--times). For a .vtm, "points" and "cells" are the sums over its blocks (points over the
+`points` datasets, cells over `lines` and `panels`), "point_arrays" are checked in every block,
+"line_arrays" {name: ncomp} in the `lines` blocks, and the field data `TimeValue` must equal
+the .pvd time. Expectations given on the command line override those in the JSON
 file, whose keys are: "points", "cells" {type: count}, "point_arrays" {name: ncomp},
 "cell_arrays" {name: ncomp}, "times" [..].
 
@@ -100,6 +104,68 @@ def check_vtu(path, exp, fails):
           f"cell arrays {sorted(mesh.cell_data)}")
 
 
+def check_vtm(path, exp, fails, t=None):
+    """Every block .vtu of a multiblock step, read with meshio (as a user of meshio would)."""
+    try:
+        root = ET.parse(path).getroot()
+    except Exception as e:  # noqa: BLE001
+        fails.append(f"{path}: not readable XML: {e}")
+        return
+    base = os.path.dirname(path)
+    npts = 0
+    cells = {}
+    nfiles = 0
+    for block in root.findall("./vtkMultiBlockDataSet/Block"):
+        for ds in block.findall("./DataSet"):
+            f = os.path.join(base, ds.get("file"))
+            kind = ds.get("name")
+            where = f"{path}: block {block.get('name')}/{kind}"
+            try:
+                mesh = meshio.read(f)
+            # meshio 5.3 calls exit() on some files it cannot read (a String data array)
+            except (Exception, SystemExit) as e:  # noqa: BLE001 - report any reader failure
+                fails.append(f"{where}: meshio cannot read {f}: {e}")
+                continue
+            nfiles += 1
+            n = len(mesh.points)
+            if not np.all(np.isfinite(mesh.points)):
+                fails.append(f"{where}: non-finite point coordinates")
+            if kind == "points":
+                npts += n
+            else:
+                for cb in mesh.cells:
+                    cells[cb.type] = cells.get(cb.type, 0) + len(cb.data)
+            want = dict(exp.get("point_arrays", {}))
+            cwant = exp.get("line_arrays", {}) if kind == "lines" else {}
+            for name, ncomp in list(want.items()) + list(cwant.items()):
+                data = mesh.point_data.get(name) if name in want else None
+                if name in cwant:
+                    blocks = mesh.cell_data.get(name)
+                    data = np.concatenate([np.asarray(b) for b in blocks]) if blocks else None
+                if data is None:
+                    fails.append(f"{where}: array `{name}` missing")
+                    continue
+                a = np.asarray(data)
+                k = 1 if a.ndim == 1 else a.shape[1]
+                if k != ncomp or not np.all(np.isfinite(a)):
+                    fails.append(f"{where}: array `{name}` has shape {a.shape} (expected "
+                                 f"{ncomp} components) or non-finite values")
+            if t is not None:
+                tv = mesh.field_data.get("TimeValue")
+                if tv is None or not math.isclose(float(np.ravel(tv)[0]), t, rel_tol=1e-12,
+                                                  abs_tol=1e-12):
+                    fails.append(f"{where}: field data TimeValue {tv}, expected {t}")
+    if nfiles == 0:
+        fails.append(f"{path}: no blocks read")
+    if "points" in exp and npts != exp["points"]:
+        fails.append(f"{path}: {npts} points in the points blocks, expected {exp['points']}")
+    if "cells" in exp:
+        want = {k: v for k, v in exp["cells"].items() if v}
+        if cells != want:
+            fails.append(f"{path}: cells {cells}, expected {want}")
+    print(f"{path}: {nfiles} blocks read by meshio, {npts} points, cells {cells}")
+
+
 def check_pvd(path, exp, fails):
     try:
         root = ET.parse(path).getroot()
@@ -118,7 +184,10 @@ def check_pvd(path, exp, fails):
         if not os.path.exists(f):
             fails.append(f"{path}: lists {ds.get('file')}, which does not exist")
             continue
-        check_vtu(f, exp, fails)
+        if f.endswith(".vtm"):
+            check_vtm(f, exp, fails, t)
+        else:
+            check_vtu(f, exp, fails)
     if any(b <= a for a, b in zip(times, times[1:])):
         fails.append(f"{path}: time values not increasing: {times}")
     if "times" in exp:
@@ -160,6 +229,8 @@ def main():
     fails = []
     if args.file.endswith(".pvd"):
         check_pvd(args.file, exp, fails)
+    elif args.file.endswith(".vtm"):
+        check_vtm(args.file, exp, fails)
     else:
         check_vtu(args.file, exp, fails)
     if fails:

@@ -117,8 +117,13 @@ fn case_command(sweep: &Sweep, a: &Args, k: &str) -> anyhow::Result<String> {
     Ok(cmd)
 }
 
-/// A Slurm job-array script: one case per array task.
+/// A Slurm job-array script: one case per array task, Slurm's own output of each task in the
+/// case's folder (created here: Slurm does not create the folder of an `--output` file).
 fn slurm_script(sweep: &Sweep, a: &Args) -> anyhow::Result<String> {
+    for k in 0..sweep.cases.len() {
+        let dir = sweep.case_dir(k);
+        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
     let stem = sweep
         .file
         .file_stem()
@@ -136,11 +141,12 @@ fn slurm_script(sweep: &Sweep, a: &Args) -> anyhow::Result<String> {
          #SBATCH --array=0-{last}\n\
          #SBATCH --ntasks=1\n\
          #SBATCH --cpus-per-task=1\n\
-         #SBATCH --output=aqua-{job}-%A_%a.log\n\
+         #SBATCH --output={out_dir}/case_%4a/slurm-%A_%a.log\n\
          set -euo pipefail\n\
          : \"${{SLURM_ARRAY_TASK_ID:?run this script with sbatch (or set SLURM_ARRAY_TASK_ID)}}\"\n\
          exec {cmd}\n",
         n = sweep.cases.len(),
+        out_dir = sweep.out.display(),
         scene = sweep.scene.display(),
         out = sweep.out.display(),
         last = sweep.cases.len() - 1,
@@ -148,7 +154,21 @@ fn slurm_script(sweep: &Sweep, a: &Args) -> anyhow::Result<String> {
     ))
 }
 
-/// Runs case `k` into its folder and writes its `case.json`.
+/// The case's `aqua.log`: every line is written there and to stderr (a tee of the case's own
+/// messages), so whichever engine starts the case, its folder holds what it said.
+struct CaseLog(Option<std::fs::File>);
+
+impl CaseLog {
+    fn line(&mut self, text: &str) {
+        use std::io::Write;
+        eprintln!("{text}");
+        if let Some(f) = self.0.as_mut() {
+            let _ = writeln!(f, "{text}");
+        }
+    }
+}
+
+/// Runs case `k` into its folder and writes its `case.json` and `aqua.log`.
 fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
     let Some(case) = sweep.cases.get(k) else {
         return Err(InputError::new(format!(
@@ -160,24 +180,64 @@ fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
         .into());
     };
     let dir = sweep.case_dir(k);
+    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    // A case.json of an earlier sweep must not pass for this run's.
+    let _ = std::fs::remove_file(dir.join("case.json"));
+    let log_path = dir.join("aqua.log");
+    let mut log = CaseLog(Some(
+        std::fs::File::create(&log_path)
+            .with_context(|| format!("writing {}", log_path.display()))?,
+    ));
+    let set: Vec<String> = case.overrides.iter().map(|o| o.to_string()).collect();
+    log.line(&format!(
+        "aqua sweep {} --case {k} ({}) into {}",
+        sweep.file.display(),
+        case.name,
+        dir.display()
+    ));
+    log.line(&if set.is_empty() {
+        "set: nothing (the scene as written)".to_string()
+    } else {
+        format!("set: {}", set.join(", "))
+    });
     let t0 = Instant::now();
     let result = run_scene(&sweep.scene, &case.overrides, &dir, true);
     let (status, error) = match &result {
         Ok(e) => (e.as_str(), None),
         Err(e) => (Ending::Failed.as_str(), Some(format!("{e:#}"))),
     };
+    // The run's warnings (printed live above, kept in run.json's diagnostics).
+    let diagnostics = std::fs::read_to_string(dir.join("run.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v.get("diagnostics").and_then(|d| d.as_array()).cloned())
+        .unwrap_or_default();
+    if let Some(f) = log.0.as_mut() {
+        use std::io::Write;
+        for d in &diagnostics {
+            let text = d.as_str().map_or_else(|| d.to_string(), str::to_string);
+            let _ = writeln!(f, "{text}");
+        }
+    }
+    log.line(&format!(
+        "case {k} ({}): {status} in {:.2} s{}",
+        case.name,
+        t0.elapsed().as_secs_f64(),
+        error.as_ref().map(|e| format!(": {e}")).unwrap_or_default()
+    ));
     let record = CaseRecord {
         index: k,
         name: case.name.clone(),
-        set: case.overrides.iter().map(|o| o.to_string()).collect(),
+        set,
         status: status.to_string(),
         error,
         wall_time_s: t0.elapsed().as_secs_f64(),
     };
-    std::fs::create_dir_all(&dir)?;
     let path = dir.join("case.json");
     std::fs::write(&path, serde_json::to_string_pretty(&record)?)
         .with_context(|| format!("writing {}", path.display()))?;
+    // The error itself is printed once more by main; the log already has it.
+    log.0 = None;
     match result? {
         Ending::Interrupted => std::process::exit(crate::interrupted_exit_code()),
         _ => Ok(()),
@@ -235,22 +295,13 @@ fn run_local(sweep: &Sweep, jobs: usize) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// One case as a child process; returns its status line.
+/// One case as a child process (which writes its folder's `aqua.log` and `case.json`
+/// itself); returns its status line.
 fn run_child(exe: &Path, sweep: &Sweep, k: usize) -> String {
     let dir = sweep.case_dir(k);
-    let log =
-        std::fs::create_dir_all(&dir).and_then(|_| std::fs::File::create(dir.join("aqua.log")));
-    let log = match log {
-        Ok(f) => f,
-        Err(e) => return format!("failed: cannot write {}: {e}", dir.display()),
-    };
     // A case.json of an earlier sweep must not pass for this run's.
     let _ = std::fs::remove_file(dir.join("case.json"));
-    let err_log = match log.try_clone() {
-        Ok(f) => f,
-        Err(e) => return format!("failed: {e}"),
-    };
-    let status = Command::new(exe)
+    let output = Command::new(exe)
         .arg("sweep")
         .arg(&sweep.file)
         .arg("--case")
@@ -258,12 +309,28 @@ fn run_child(exe: &Path, sweep: &Sweep, k: usize) -> String {
         .arg("--out")
         .arg(&sweep.out)
         .stdin(Stdio::null())
-        .stdout(log)
-        .stderr(err_log)
-        .status();
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .output();
     let record: Option<CaseRecord> = std::fs::read_to_string(dir.join("case.json"))
         .ok()
         .and_then(|t| serde_json::from_str(&t).ok());
+    // A case that ended before its own log was set up (or crashed): keep what it printed.
+    if record.is_none()
+        && let Ok(o) = &output
+    {
+        use std::io::Write;
+        let log = std::fs::create_dir_all(&dir).and_then(|_| {
+            std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(dir.join("aqua.log"))
+        });
+        if let Ok(mut f) = log {
+            let _ = f.write_all(&o.stderr);
+        }
+    }
+    let status = output.map(|o| o.status);
     match (status, record) {
         (Ok(_), Some(r)) => format!(
             "{} in {:.2} s{}",
