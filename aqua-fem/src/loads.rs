@@ -96,7 +96,9 @@ pub trait LoadProvider: Sync {
     /// the first iterate with ‖r‖ ≤ 0.1·F_ref (the solve then goes on with the changed loads).
     /// The place for load data that must stay fixed between these calls because it changes
     /// discontinuously with the geometry (which elements lie in a wake). Returns true if the
-    /// loads changed; a converged static solve is then repeated from its equilibrium
+    /// loads changed (any wake factor by more than the provider's tolerance, not only a
+    /// change of membership); a converged static solve is then repeated from its equilibrium,
+    /// and after five such re-solves the loads are frozen and solved once more
     /// (docs/theory/fem.md#static-solver).
     fn accept_state(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, LoadError> {
         let _ = (t, x);
