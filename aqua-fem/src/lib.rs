@@ -111,6 +111,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod rod;
 mod seabed;
 pub mod state;
 pub mod statics;
@@ -129,9 +130,10 @@ pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoad
 pub use model::{
     AxialDamping, Cable, CableSection, DEFAULT_COMPRESSION_RATIO, DEFAULT_GRAVITY,
     DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
-    Seabed, Support, UnstretchedLength,
+    RodSection, Seabed, Support, UnstretchedLength,
 };
 pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,

@@ -27,6 +27,10 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
     for e in model.elements() {
         union(&mut parent, e.a, e.b);
     }
+    for e in model.rod_edges() {
+        union(&mut parent, e.nodes[0], e.nodes[1]);
+        union(&mut parent, e.nodes[0], e.carrier);
+    }
     for e in 0..provider.n_elements() {
         let nodes = provider.element_nodes(e);
         for w in nodes.windows(2) {
