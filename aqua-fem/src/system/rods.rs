@@ -10,7 +10,7 @@ use crate::rod::{self, ROD_DOFS, RodEval, Vars};
 use rayon::prelude::*;
 
 /// Vertex count from which the rod kernel runs in parallel (docs/theory/fem.md#threads).
-const PAR_THRESHOLD: usize = 128;
+const PAR_THRESHOLD: usize = 16;
 
 fn vertex_vars(v: &crate::rod::RodVertex, x: &[[f64; 3]]) -> Vars {
     let [a, b, c] = v.nodes;
