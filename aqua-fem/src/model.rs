@@ -933,6 +933,11 @@ impl Model {
     pub fn n_rods(&self) -> usize {
         self.rods.n_rods
     }
+    /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad];
+    /// its held coordinates hold nothing of the structure).
+    pub fn is_twist_carrier(&self, i: usize) -> bool {
+        self.is_auxiliary(i) && !self.rods.holders.contains(&i)
+    }
     /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad],
     /// not a position) or a held ghost node of a clamped rod end: not a point of the structure.
     pub fn is_auxiliary(&self, i: usize) -> bool {
