@@ -110,6 +110,7 @@
 
 mod bending;
 mod cable;
+mod dual;
 pub mod dynamics;
 pub mod error;
 pub mod explicit;

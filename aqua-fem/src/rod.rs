@@ -20,10 +20,9 @@
 //! with ω̄, m̄ of the as-built shape at θ = 0 (P_{a→b} the parallel transport from t_a to t_b), so
 //! the as-built shape is force free and a curved member keeps the side its curvature is on.
 //! W is a function of the two edge vectors and the two twists (8 variables); its gradient and
-//! Hessian come from forward-mode automatic differentiation (num-dual), exact to round-off.
+//! Hessian come from forward-mode automatic differentiation (`dual.rs`), exact to round-off.
 
-use nalgebra::SVector;
-use num_dual::{DualNum, gradient, hessian};
+use crate::dual::{Dual1, Dual2, Real};
 use serde::{Deserialize, Serialize};
 
 /// Number of local DOFs of a rod vertex: three nodes (9) and two twists.
@@ -159,11 +158,7 @@ pub(crate) fn vars(x: [[f64; 3]; 3], theta: [f64; 2]) -> Vars {
 
 /// Material curvatures (ω^a, ω^b) and twist m at the variables `y`, with reference frames
 /// `fa`, `fb`; generic over dual numbers.
-fn kinematics<D: DualNum<Primitive = f64> + Copy>(
-    fa: &EdgeFrame,
-    fb: &EdgeFrame,
-    y: &[D; 8],
-) -> ([[D; 2]; 2], D) {
+fn kinematics<D: Real>(fa: &EdgeFrame, fb: &EdgeFrame, y: &[D; 8]) -> ([[D; 2]; 2], D) {
     let ta = unit([y[0], y[1], y[2]]);
     let tb = unit([y[3], y[4], y[5]]);
     let (m1a, m2a) = material(fa, ta, y[6]);
@@ -177,12 +172,8 @@ fn kinematics<D: DualNum<Primitive = f64> + Copy>(
 }
 
 /// Material frame (m1, m2) of an edge of unit tangent t and twist θ.
-fn material<D: DualNum<Primitive = f64> + Copy>(
-    f: &EdgeFrame,
-    t: [D; 3],
-    theta: D,
-) -> ([D; 3], [D; 3]) {
-    let d1 = transport(f.tangent.map(D::from), f.director.map(D::from), t);
+fn material<D: Real>(f: &EdgeFrame, t: [D; 3], theta: D) -> ([D; 3], [D; 3]) {
+    let d1 = transport(f.tangent.map(D::cst), f.director.map(D::cst), t);
     let d2 = cross(t, d1);
     let (s, c) = (theta.sin(), theta.cos());
     (
@@ -200,21 +191,16 @@ fn material<D: DualNum<Primitive = f64> + Copy>(
 }
 
 /// Energy W of vertex `v` at the variables `y`.
-fn energy_of<D: DualNum<Primitive = f64> + Copy>(
-    v: &RodVertex,
-    fa: &EdgeFrame,
-    fb: &EdgeFrame,
-    y: &[D; 8],
-) -> D {
+fn energy_of<D: Real>(v: &RodVertex, fa: &EdgeFrame, fb: &EdgeFrame, y: &[D; 8]) -> D {
     let (omega, twist) = kinematics(fa, fb, y);
-    let mut bend = D::from(0.0);
+    let mut bend = D::cst(0.0);
     for j in 0..2 {
         for k in 0..2 {
-            let d = omega[j][k] - v.rest_curvature[j][k];
-            bend += d * d;
+            let d = omega[j][k] + (-v.rest_curvature[j][k]);
+            bend = bend + d * d;
         }
     }
-    let dm = twist - v.rest_twist;
+    let dm = twist + (-v.rest_twist);
     bend * (0.5 * v.ei / v.length) + dm * dm * (v.gj / v.length)
 }
 
@@ -261,20 +247,15 @@ pub(crate) fn evaluate(
         out.energy = f64::INFINITY;
         return;
     }
-    let x = SVector::from(*y);
     let (w, mut g) = if tangent {
-        let (w, g, h) = hessian(|z| energy_of(v, fa, fb, &z.into()), &x);
-        let mut k8 = [[0.0; 8]; 8];
-        for i in 0..8 {
-            for j in 0..8 {
-                k8[i][j] = h[(i, j)];
-            }
-        }
-        to_nodes_k(&k8, &mut out.k);
-        (w, [g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7]])
+        let z: [Dual2<8>; 8] = std::array::from_fn(|i| Dual2::var(y[i], i));
+        let e = energy_of(v, fa, fb, &z);
+        to_nodes_k(&e.h, &mut out.k);
+        (e.v, e.g)
     } else {
-        let (w, g) = gradient(|z| energy_of(v, fa, fb, &z.into()), &x);
-        (w, [g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7]])
+        let z: [Dual1<8>; 8] = std::array::from_fn(|i| Dual1::var(y[i], i));
+        let e = energy_of(v, fa, fb, &z);
+        (e.v, e.g)
     };
     out.energy = w;
     if let Some((y0, y1)) = ends {
@@ -352,7 +333,7 @@ fn to_nodes_k(h: &[[f64; 8]; 8], k: &mut [[f64; ROD_DOFS]; ROD_DOFS]) {
     }
 }
 
-fn transport<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], v: [D; 3], b: [D; 3]) -> [D; 3] {
+fn transport<D: Real>(a: [D; 3], v: [D; 3], b: [D; 3]) -> [D; 3] {
     // Rotation about a×b taking unit a to unit b: R·v = c·v + w×v + (w·v)/(1 + c)·w.
     let c = dot(a, b);
     let w = cross(a, b);
@@ -365,16 +346,16 @@ fn transport<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], v: [D; 3], b: [D; 3]
     ]
 }
 
-fn unit<D: DualNum<Primitive = f64> + Copy>(e: [D; 3]) -> [D; 3] {
+fn unit<D: Real>(e: [D; 3]) -> [D; 3] {
     let n = dot(e, e).sqrt();
     e.map(|c| c / n)
 }
 
-fn dot<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], b: [D; 3]) -> D {
+fn dot<D: Real>(a: [D; 3], b: [D; 3]) -> D {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], b: [D; 3]) -> [D; 3] {
+fn cross<D: Real>(a: [D; 3], b: [D; 3]) -> [D; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],

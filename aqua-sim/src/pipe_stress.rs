@@ -3,7 +3,7 @@
 //! moment M at its ends, and its largest value per group (docs/theory/fem.md#rod).
 
 use crate::build::Built;
-use aqua_fem::{GroupId, Outputs};
+use aqua_fem::{GroupId, Model, Outputs};
 use aqua_mesh::{BendingElement, Section};
 
 /// A group of pipes modelled as rods.
@@ -17,15 +17,24 @@ pub struct PipeGroup {
     pub section: Section,
 }
 
-/// The pipe groups of a model: every group whose section bends with `bending_element = "rod"`.
+/// The pipe groups of a model: every group whose section bends with `bending_element = "rod"`
+/// and that has rod edges (a group of single links between other members has none).
 pub fn pipe_groups(
     sections: &[Option<(GroupId, Section)>],
     group_names: &[String],
+    model: &Model,
 ) -> Vec<PipeGroup> {
+    let mut on_rod = vec![false; model.elements().len()];
+    for e in model.rod_edges() {
+        if let Some(el) = e.element {
+            on_rod[el] = true;
+        }
+    }
     let mut out: Vec<PipeGroup> = Vec::new();
     for (id, s) in sections.iter().flatten() {
         if s.bending_stiffness() > 0.0
             && s.bending_element == BendingElement::Rod
+            && model.groups()[id.0].elements.iter().any(|&e| on_rod[e])
             && !out.iter().any(|p| p.group == *id)
         {
             out.push(PipeGroup {

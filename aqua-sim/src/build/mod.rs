@@ -189,7 +189,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         model.environment().gravity,
     ));
     let supported_nodes: Vec<usize> = st.supported.into_iter().collect();
-    let pipes = crate::pipe_stress::pipe_groups(&st.sections, &st.group_names);
+    let pipes = crate::pipe_stress::pipe_groups(&st.sections, &st.group_names, &model);
     let mut line_ends = line_ends;
     for le in &mut line_ends {
         le.supported = [le.anchor, le.fairlead].map(|n| supported_nodes.contains(&n));
