@@ -244,6 +244,7 @@ impl<'m> ExplicitSolver<'m> {
         // 2·Σk bounds the cable rows, ω² ≤ max row sum/m bounds the hinge part.
         let mut k_bend = vec![0.0; n];
         self.sys.add_hinge_row_sums(model, &mut k_bend);
+        self.sys.add_rod_row_sums(model, &mut k_bend);
         let c_rows = self.sys.row_abs_sums();
         let bed = BedLaw::new(model, true);
         let mut dt = f64::INFINITY;
@@ -419,6 +420,7 @@ impl<'m> ExplicitSolver<'m> {
         let model = self.model;
         let t = self.state.t;
         crate::loads::accept_state(provider, t, &self.state.x)?;
+        self.sys.accept_rod_frames(model, &self.state.x);
         let mut h = self.dt;
         let mut target = self.st.t_end;
         if let Some(oi) = self.st.output_interval {

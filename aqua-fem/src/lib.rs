@@ -24,6 +24,13 @@
 //! * Bending hinge (nodes a, b, c; EI, as-built κ̄ and ℓ̄): t = ê₁·ê₂ of the edges
 //!   e₁ = x_b − x_a, e₂ = x_c − x_b, |κb| = 2·tan(φ/2), W = EI/(2ℓ̄)·(|κb| − κ̄)², f_int = ∂W/∂x,
 //!   exact 9×9 tangent; rotation invariant, torsion neglected.
+//! * Rod (discrete elastic rod, docs/theory/fem.md#rod): one twist θ per edge (the first
+//!   coordinate of an auxiliary carrier node), material frames (m1, m2) parallel transported
+//!   from the last accepted state and turned by θ; at each vertex
+//!   W = EI/(2l̄)·Σ_j |ω^j − ω̄^j|² + GJ/l̄·(m − m̄)² with the material curvatures
+//!   ω^j = (κb·m2_j, −κb·m1_j), κb = 2·t_a×t_b/(1 + t_a·t_b), and the twist m across the
+//!   vertex; exact 11×11 tangent by automatic differentiation; a discrete gradient per vertex
+//!   in the energy-consistent midpoint rule.
 //! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
 //! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
 //! * Seabed friction in dynamics (regularised Coulomb, docs/theory/fem.md#seabed-friction):
@@ -72,10 +79,10 @@
 //!
 //! ## Files
 //! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
-//! `bending.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
+//! `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
 //! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
-//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `load_derivatives.rs`,
-//! `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
+//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`,
+//! `load_derivatives.rs`, `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
 //! (`mod.rs` the solver, `settings.rs`, `support.rs` the checks before a solve);
 //! `dynamics/` (`settings.rs`, `step_control.rs`, `energy.rs`, `newton.rs`, and one file per
 //! time scheme, `hht.rs` and `midpoint.rs`, dispatched by `scheme.rs`);
@@ -103,6 +110,7 @@
 
 mod bending;
 mod cable;
+mod dual;
 pub mod dynamics;
 pub mod error;
 pub mod explicit;
@@ -111,6 +119,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod rod;
 mod seabed;
 pub mod state;
 pub mod statics;
@@ -129,9 +138,10 @@ pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoad
 pub use model::{
     AxialDamping, Cable, CableSection, DEFAULT_COMPRESSION_RATIO, DEFAULT_GRAVITY,
     DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
-    Seabed, Support, UnstretchedLength,
+    RodSection, Seabed, Support, UnstretchedLength,
 };
 pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,

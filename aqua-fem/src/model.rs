@@ -4,6 +4,7 @@ use crate::bending::Hinge;
 use crate::error::{FemError, Result, invalid};
 use crate::friction::SeabedFriction;
 use crate::motion::{Motion, check_finite3};
+use crate::rod::{self, EdgeFrame, RodEdge, RodVertex};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -299,6 +300,7 @@ pub struct ModelBuilder {
     supports: Vec<Support>,
     motions: Vec<Motion>,
     hinges: Vec<Hinge>,
+    rods: Rods,
 }
 
 impl ModelBuilder {
@@ -486,6 +488,138 @@ impl ModelBuilder {
         Ok(start..self.hinges.len())
     }
 
+    /// Adds a rod (a pipe with bending about both axes and torsion, docs/theory/fem.md#rod)
+    /// along the node chain `nodes` (a ring whose last node joins the first if `closed`), with
+    /// a twist carrier node per edge. `clamped[0]` / `clamped[1]` clamp the first / last node
+    /// of an open chain: its position, its tangent and its twist are held (a held ghost edge
+    /// continues the rod beyond it). Consecutive nodes should be joined by cable elements that
+    /// carry the axial stiffness and the mass. Returns the twist carrier of each edge of
+    /// `nodes` in order (a torque about an edge is a force on its carrier's first coordinate).
+    pub fn add_rod(
+        &mut self,
+        nodes: &[usize],
+        section: RodSection,
+        closed: bool,
+        clamped: [bool; 2],
+    ) -> Result<Vec<usize>> {
+        let id = self.rods.n_rods;
+        let what = format!("rod {id}");
+        section.validate(&what)?;
+        for &nd in nodes {
+            self.check_node(&what, nd)?;
+        }
+        let need = if closed { 3 } else { 2 };
+        if nodes.len() < need || (closed && clamped.iter().any(|&c| c)) {
+            return Err(FemError::InvalidModel(format!(
+                "{what} needs at least {need} nodes (got {}); a ring cannot be clamped",
+                nodes.len()
+            )));
+        }
+        let mut chain: Vec<usize> = nodes.to_vec();
+        // Ghost nodes one edge beyond a clamped end, held in place.
+        let ghost = |b: &mut Self, end: usize, next: usize| -> Result<usize> {
+            let (p, q) = (b.nodes[end], b.nodes[next]);
+            let g = b.add_node([2.0 * p[0] - q[0], 2.0 * p[1] - q[1], 2.0 * p[2] - q[2]])?;
+            b.rods.holders.push(g);
+            b.fix(g, Dofs::ALL)?;
+            Ok(g)
+        };
+        if clamped[0] {
+            let g = ghost(self, nodes[0], nodes[1])?;
+            chain.insert(0, g);
+        }
+        if clamped[1] {
+            let n = nodes.len();
+            let g = ghost(self, nodes[n - 1], nodes[n - 2])?;
+            chain.push(g);
+        }
+        let m = chain.len();
+        let n_edges = if closed { m } else { m - 1 };
+        let first_edge = self.rods.edges.len();
+        let mut frame: Option<EdgeFrame> = None;
+        for j in 0..n_edges {
+            let (a, b) = (chain[j], chain[(j + 1) % m]);
+            let e = sub3(self.nodes[b], self.nodes[a]);
+            let f = match frame {
+                None => EdgeFrame::for_edge(e),
+                Some(prev) => prev.transported(e),
+            }
+            .ok_or_else(|| {
+                FemError::InvalidModel(format!(
+                    "{what}: the as-built edge {a}-{b} has zero length or folds back onto the \
+                     one before it"
+                ))
+            })?;
+            frame = Some(f);
+            let carrier = self.add_node([0.0; 3])?;
+            let held = Dofs {
+                x: (clamped[0] && j == 0) || (clamped[1] && j + 1 == n_edges),
+                y: true,
+                z: true,
+            };
+            self.fix(carrier, held)?;
+            self.rods
+                .carrier_inertia
+                .push((carrier, section.spin_inertia * norm3(e)));
+            self.rods.edges.push(RodEdge {
+                nodes: [a, b],
+                carrier,
+                element: None,
+                frame: f,
+            });
+        }
+        let n_vertices = if closed { m } else { m - 2 };
+        let mut curved = false;
+        for k in 0..n_vertices {
+            let (ia, ib) = if closed {
+                ((k + n_edges - 1) % n_edges, k)
+            } else {
+                (k, k + 1)
+            };
+            let (ea, eb) = (
+                &self.rods.edges[first_edge + ia],
+                &self.rods.edges[first_edge + ib],
+            );
+            let va = sub3(self.nodes[ea.nodes[1]], self.nodes[ea.nodes[0]]);
+            let vb = sub3(self.nodes[eb.nodes[1]], self.nodes[eb.nodes[0]]);
+            let (rest_curvature, rest_twist) = rod::rest_state(&ea.frame, &eb.frame, va, vb);
+            curved |= rest_curvature.iter().flatten().any(|c| c.abs() > 1e-8);
+            self.rods.vertices.push(RodVertex {
+                nodes: [ea.nodes[0], ea.nodes[1], eb.nodes[1]],
+                carriers: [ea.carrier, eb.carrier],
+                edges: [first_edge + ia, first_edge + ib],
+                ei: section.ei,
+                gj: section.gj,
+                // At a clamped end the ghost edge adds nothing to the vertex's length: the
+                // pipe starts at the clamp, whose Voronoi length is half an edge.
+                length: if clamped[0] && k == 0 && !closed {
+                    norm3(vb)
+                } else if clamped[1] && !closed && k + 1 == n_vertices {
+                    norm3(va)
+                } else {
+                    norm3(va) + norm3(vb)
+                },
+                rest_curvature,
+                rest_twist,
+            });
+        }
+        // A straight, unclamped rod of round section turns about its own axis at no cost: its
+        // first twist is held (docs/theory/fem.md#rod).
+        if !curved && !clamped.iter().any(|&c| c) {
+            let c = self.rods.edges[first_edge].carrier;
+            self.fix(c, Dofs::ALL)?;
+        }
+        self.rods.n_rods += 1;
+        let skip = usize::from(clamped[0]);
+        let n_own = if closed { nodes.len() } else { nodes.len() - 1 };
+        Ok(
+            self.rods.edges[first_edge + skip..first_edge + skip + n_own]
+                .iter()
+                .map(|e| e.carrier)
+                .collect(),
+        )
+    }
+
     /// Adds a point body (mass [kg], constant force [N], seabed stiffness [N/m]) on a node.
     pub fn add_point_body(&mut self, body: PointBody) -> Result<usize> {
         let id = self.points.len();
@@ -580,6 +714,12 @@ impl ModelBuilder {
         for p in &self.points {
             attached[p.node] = true;
         }
+        for e in &self.rods.edges {
+            attached[e.carrier] = true;
+        }
+        for &g in &self.rods.holders {
+            attached[g] = true;
+        }
         if let Some(i) = attached.iter().position(|a| !a) {
             return Err(FemError::InvalidModel(format!(
                 "node {i} at {:?} belongs to no element and carries no point body",
@@ -612,6 +752,29 @@ impl ModelBuilder {
         for i in 0..n {
             weight[i][2] = -lumped_mass[i] * env.gravity;
         }
+        // Spin inertia of the rods' twists, on their carriers (weightless).
+        for &(c, j) in &self.rods.carrier_inertia {
+            lumped_mass[c] += j;
+            point_mass[c] += j;
+        }
+        let mut rods = self.rods;
+        if !rods.edges.is_empty() {
+            let mut by_nodes = HashMap::new();
+            for (i, e) in self.elements.iter().enumerate() {
+                by_nodes.entry((e.a.min(e.b), e.a.max(e.b))).or_insert(i);
+            }
+            for e in &mut rods.edges {
+                let [a, b] = e.nodes;
+                e.element = by_nodes.get(&(a.min(b), a.max(b))).copied();
+            }
+            rods.auxiliary = vec![false; n];
+            for e in &rods.edges {
+                rods.auxiliary[e.carrier] = true;
+            }
+            for &g in &rods.holders {
+                rods.auxiliary[g] = true;
+            }
+        }
         let mean_length = if self.elements.is_empty() {
             1.0
         } else {
@@ -627,6 +790,7 @@ impl ModelBuilder {
             supports: self.supports,
             motions: self.motions,
             hinges: self.hinges,
+            rods,
             lumped_mass,
             weight,
             point_force,
@@ -636,6 +800,67 @@ impl ModelBuilder {
             mean_length,
         })
     }
+}
+
+/// Section of a rod (docs/theory/fem.md#rod).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RodSection {
+    /// Bending stiffness EI [N·m²].
+    pub ei: f64,
+    /// Torsional stiffness GJ [N·m²].
+    pub gj: f64,
+    /// Spin inertia per unit length, ∫ρ·r² dA [kg·m] (the mass moment of inertia about the
+    /// pipe's axis per metre).
+    pub spin_inertia: f64,
+}
+
+impl RodSection {
+    fn validate(&self, what: &str) -> Result<()> {
+        for (key, v, ok) in [
+            ("bending stiffness EI [N m^2]", self.ei, self.ei > 0.0),
+            ("torsional stiffness GJ [N m^2]", self.gj, self.gj > 0.0),
+            (
+                "spin inertia [kg m]",
+                self.spin_inertia,
+                self.spin_inertia >= 0.0,
+            ),
+        ] {
+            if !(v.is_finite() && ok) {
+                return Err(invalid(
+                    format!("{what} {key}"),
+                    v,
+                    if key.starts_with("spin") {
+                        ">= 0"
+                    } else {
+                        "> 0"
+                    },
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The rods of a model: vertices, edges, their auxiliary nodes.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Rods {
+    pub n_rods: usize,
+    pub vertices: Vec<RodVertex>,
+    pub edges: Vec<RodEdge>,
+    /// Twist carrier and its spin inertia [kg·m²].
+    pub carrier_inertia: Vec<(usize, f64)>,
+    /// Held ghost nodes beyond clamped ends.
+    pub holders: Vec<usize>,
+    /// Per node: a twist carrier or a ghost node (filled at build).
+    pub auxiliary: Vec<bool>,
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn norm3(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }
 
 pub(crate) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -654,7 +879,8 @@ pub struct Model {
     pub(crate) supports: Vec<Support>,
     pub(crate) motions: Vec<Motion>,
     pub(crate) hinges: Vec<Hinge>,
-    /// Lumped structural mass per node [kg].
+    pub(crate) rods: Rods,
+    /// Lumped structural mass per node [kg] (twist carriers: spin inertia [kg·m²]).
     pub(crate) lumped_mass: Vec<f64>,
     /// Nodal weight vector [N].
     pub(crate) weight: Vec<[f64; 3]>,
@@ -694,6 +920,28 @@ impl Model {
     /// Bending hinges.
     pub fn hinges(&self) -> &[Hinge] {
         &self.hinges
+    }
+    /// Rod vertices (bending and torsion, docs/theory/fem.md#rod).
+    pub fn rod_vertices(&self) -> &[RodVertex] {
+        &self.rods.vertices
+    }
+    /// Rod edges, each with its twist carrier and cable element.
+    pub fn rod_edges(&self) -> &[RodEdge] {
+        &self.rods.edges
+    }
+    /// Number of rods.
+    pub fn n_rods(&self) -> usize {
+        self.rods.n_rods
+    }
+    /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad];
+    /// its held coordinates hold nothing of the structure).
+    pub fn is_twist_carrier(&self, i: usize) -> bool {
+        self.is_auxiliary(i) && !self.rods.holders.contains(&i)
+    }
+    /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad],
+    /// not a position) or a held ghost node of a clamped rod end: not a point of the structure.
+    pub fn is_auxiliary(&self, i: usize) -> bool {
+        self.rods.auxiliary.get(i).copied().unwrap_or(false)
     }
     /// Groups.
     pub fn groups(&self) -> &[Group] {

@@ -51,6 +51,13 @@ pub struct Outputs {
     pub strain: Vec<f64>,
     /// Current length per element [m].
     pub length: Vec<f64>,
+    /// Bending moment |M| per element that is a rod edge: the larger of its ends [N·m]
+    /// (docs/theory/fem.md#rod); 0 elsewhere.
+    #[serde(default)]
+    pub bending_moment: Vec<f64>,
+    /// Torque per element that is a rod edge: the mean of its ends [N·m]; 0 elsewhere.
+    #[serde(default)]
+    pub torque: Vec<f64>,
     /// Reaction per node [N]: the force the support applies to the structure (zero on free
     /// DOFs); R = M·a + f_int + f_bed − f_ext at constrained DOFs.
     pub reaction: Vec<[f64; 3]>,
@@ -67,6 +74,8 @@ impl Outputs {
             tension: vec![0.0; ne],
             strain: vec![0.0; ne],
             length: vec![0.0; ne],
+            bending_moment: vec![0.0; ne],
+            torque: vec![0.0; ne],
             reaction: vec![[0.0; 3]; n],
             seabed_force: vec![[0.0; 3]; n],
             hydro_force: vec![[0.0; 3]; n],
@@ -80,6 +89,7 @@ impl Outputs {
             self.strain[i] = c.strain;
             self.length[i] = c.length;
         }
+        sys.rod_section_forces(model, &mut self.bending_moment, &mut self.torque);
         for i in 0..model.n_nodes() {
             for k in 0..3 {
                 self.reaction[i][k] = if model.is_constrained(i, k) {

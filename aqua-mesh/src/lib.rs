@@ -64,8 +64,9 @@ pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use limits::MAX_LENGTH;
 pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
 pub use mesh::{
-    CageCounts, Group, GroupSummary, LineElement, Mesh, MeshSummary, Object, ObjectKind,
-    ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section, SectionOverride,
+    BendingElement, CageCounts, DEFAULT_POISSON_RATIO, Group, GroupSummary, LineElement, Mesh,
+    MeshSummary, Object, ObjectKind, ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section,
+    SectionOverride,
 };
 pub use net::{NetGrouping, NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};

@@ -107,6 +107,10 @@ pub struct LineParams {
     pub ei: Option<f64>,
     /// `bending` on/off (default: on for a pipe or when `ei` is given).
     pub bending: Option<bool>,
+    /// `bending_element`: `rod` (default) or `hinge`.
+    pub bending_element: Option<crate::mesh::BendingElement>,
+    /// `poisson_ratio` ν (default 0.4).
+    pub poisson_ratio: Option<f64>,
     /// `[[line.segment]]`: the line as segments from anchor to fairlead, instead of
     /// `length`, `segments`/`element_length`, `group` and the section keys.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -194,6 +198,8 @@ impl LineParams {
                 material: None,
                 ei: self.ei,
                 bending: self.bending,
+                bending_element: self.bending_element,
+                poisson_ratio: self.poisson_ratio,
             },
         }
     }
@@ -224,6 +230,8 @@ impl LineSegment {
                 material: None,
                 ei: None,
                 bending: None,
+                bending_element: None,
+                poisson_ratio: None,
             },
         }
     }
@@ -766,6 +774,10 @@ impl LineParams {
             ("seabed", self.seabed.is_some()),
             ("contact_diameter", self.contact_diameter.is_some()),
             ("material", self.material.is_some()),
+            ("ei", self.ei.is_some()),
+            ("bending", self.bending.is_some()),
+            ("bending_element", self.bending_element.is_some()),
+            ("poisson_ratio", self.poisson_ratio.is_some()),
         ];
         match given.iter().find(|(_, g)| *g) {
             Some((k, _)) => Err(MeshError::inconsistent(

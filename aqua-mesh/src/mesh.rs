@@ -228,6 +228,36 @@ pub struct Section {
     pub bending: Option<bool>,
     /// Explicit bending stiffness EI [N·m²] overriding E·I.
     pub ei: Option<f64>,
+    /// The element that carries the bending (docs/theory/fem.md#bending-of-sections).
+    pub bending_element: BendingElement,
+    /// Poisson's ratio ν for the shear modulus G = E/(2(1 + ν)) of the torsional stiffness.
+    pub poisson_ratio: f64,
+}
+
+/// Poisson's ratio of the pipes' polyethylene (HDPE ≈ 0.4–0.46), the default ν of a section.
+pub const DEFAULT_POISSON_RATIO: f64 = 0.4;
+
+/// The element that carries a section's bending (docs/theory/fem.md#bending-of-sections).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BendingElement {
+    /// Discrete elastic rod: bending about both axes in a material frame, and torsion
+    /// (docs/theory/fem.md#rod). The default.
+    #[default]
+    Rod,
+    /// Rotation-free hinge on three nodes: bending magnitude only, no torsion
+    /// (docs/theory/fem.md#bending); cheaper, safe for members built straight.
+    Hinge,
+}
+
+impl BendingElement {
+    /// The key value.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BendingElement::Rod => "rod",
+            BendingElement::Hinge => "hinge",
+        }
+    }
 }
 
 impl Section {
@@ -252,6 +282,8 @@ impl Section {
             contact_diameter: None,
             bending: None,
             ei: None,
+            bending_element: BendingElement::Rod,
+            poisson_ratio: DEFAULT_POISSON_RATIO,
         }
     }
 
@@ -276,6 +308,8 @@ impl Section {
             contact_diameter: None,
             bending: None,
             ei: None,
+            bending_element: BendingElement::Rod,
+            poisson_ratio: DEFAULT_POISSON_RATIO,
         }
     }
 
@@ -335,6 +369,32 @@ impl Section {
         }
         self.ei
             .unwrap_or(self.youngs_modulus * self.second_moment())
+    }
+
+    /// Torsional stiffness GJ [N·m²] of a round section, J = 2I: GJ = EI/(1 + ν), with the
+    /// bending stiffness as given (`ei` or E·I).
+    pub fn torsional_stiffness(&self) -> f64 {
+        self.bending_stiffness() / (1.0 + self.poisson_ratio)
+    }
+
+    /// Spin inertia per unit length μ·r_g² [kg·m], r_g² = (D² + d_i²)/8 for a pipe of inner
+    /// diameter d_i = D − 2t, D²/8 for a solid section.
+    pub fn spin_inertia(&self) -> f64 {
+        let d = self.diameter;
+        let di = self.wall_thickness.map_or(0.0, |t| (d - 2.0 * t).max(0.0));
+        self.linear_mass() * (d * d + di * di) / 8.0
+    }
+
+    /// Largest fibre stress |N|/A + |M|·(d_e/2)/I [Pa] of the stiffness section under axial
+    /// force N [N] and bending moment M [N·m] (docs/theory/fem.md#rod).
+    pub fn fibre_stress(&self, axial: f64, moment: f64) -> f64 {
+        let i = self.second_moment();
+        let bend = if i > 0.0 {
+            moment.abs() * 0.5 * self.elastic_diameter / i
+        } else {
+            0.0
+        };
+        axial.abs() / self.stiffness_area() + bend
     }
 }
 
@@ -966,8 +1026,12 @@ pub struct SectionOverride {
     pub material: Option<String>,
     /// `ei`: bending stiffness EI [N·m²] (≥ 0; switches bending on unless `bending = false`).
     pub ei: Option<f64>,
-    /// `bending`: bending hinges on/off (default: on for pipes and when `ei` is given).
+    /// `bending`: bending on/off (default: on for pipes and when `ei` is given).
     pub bending: Option<bool>,
+    /// `bending_element`: `rod` (default) or `hinge`.
+    pub bending_element: Option<BendingElement>,
+    /// `poisson_ratio` ν, 0 ≤ ν < 0.5 (default 0.4).
+    pub poisson_ratio: Option<f64>,
 }
 
 impl SectionOverride {
@@ -1105,6 +1169,20 @@ impl SectionOverride {
         }
         if let Some(v) = self.bending {
             s.bending = Some(v);
+        }
+        if let Some(v) = self.bending_element {
+            s.bending_element = v;
+        }
+        if let Some(v) = self.poisson_ratio {
+            if !(0.0..0.5).contains(&v) {
+                return Err(MeshError::param(
+                    object,
+                    &key("poisson_ratio"),
+                    v,
+                    "must be in [0, 0.5) (HDPE about 0.4, steel 0.3)",
+                ));
+            }
+            s.poisson_ratio = v;
         }
         check_wall(s, object, &key("wall_thickness"), &key("sdr"))
     }

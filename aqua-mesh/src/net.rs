@@ -114,6 +114,8 @@ impl NetGrouping {
             contact_diameter: None,
             bending: None,
             ei: None,
+            bending_element: crate::mesh::BendingElement::Rod,
+            poisson_ratio: crate::mesh::DEFAULT_POISSON_RATIO,
         }
     }
 }

@@ -180,6 +180,7 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
             active: drag_lines > 0,
             why: format!("{drag_lines} of {} line elements", el.lines.len()),
         },
+        bending(built),
         Physics {
             name: "wake shielding",
             active: wake_on && sea.has_current(),
@@ -236,6 +237,35 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
             },
         },
     ]
+}
+
+/// Which members bend and with which element (docs/theory/fem.md#bending-of-sections).
+fn bending(built: &Built) -> Physics {
+    let model = &built.model;
+    let (rods, hinges) = (model.rod_vertices().len(), model.hinges().len());
+    let mut parts = Vec::new();
+    if rods > 0 {
+        let names: Vec<&str> = built.pipes.iter().map(|p| p.name.as_str()).collect();
+        parts.push(format!(
+            "rods (bending, torsion, stress) on {}: {} rods, {rods} vertices",
+            names.join(", "),
+            model.n_rods()
+        ));
+    }
+    if hinges > 0 {
+        parts.push(format!(
+            "{hinges} rotation-free hinges (bending only, no torsion)"
+        ));
+    }
+    Physics {
+        name: "bending",
+        active: rods + hinges > 0,
+        why: if parts.is_empty() {
+            "no member bends (ropes, chains and twines are cables)".into()
+        } else {
+            parts.join("; ")
+        },
+    }
 }
 
 /// The unknowns of the model: its DOFs that are neither fixed nor prescribed.

@@ -50,6 +50,8 @@ pub struct Extremes {
     values: Vec<f64>,
     /// Scratch: largest tension per group.
     groups: Vec<f64>,
+    /// Scratch: largest fibre stress per pipe group.
+    stresses: Vec<f64>,
     /// Scratch: line-end loads per line.
     ends: Vec<[f64; 4]>,
     max: Vec<f64>,
@@ -72,6 +74,7 @@ impl Extremes {
             columns,
             values: vec![0.0; n],
             groups: vec![0.0; built.model.groups().len()],
+            stresses: vec![0.0; built.pipes.len()],
             ends: vec![[0.0; 4]; built.line_ends.len()],
             max: vec![f64::NEG_INFINITY; n],
             t_max: vec![f64::NAN; n],
@@ -110,11 +113,14 @@ impl Extremes {
         ];
         self.values[..head.len()].copy_from_slice(&head);
         group_max_tensions(built, out, &mut self.groups);
+        crate::pipe_stress::group_max_stresses(built, out, &mut self.stresses);
         line_end_loads(built, out, &mut self.ends);
         let k = head.len();
         let g = self.groups.len();
         self.values[k..k + g].copy_from_slice(&self.groups);
-        for (dst, src) in self.values[k + g..].chunks_exact_mut(4).zip(&self.ends) {
+        let p = self.stresses.len();
+        self.values[k + g..k + g + p].copy_from_slice(&self.stresses);
+        for (dst, src) in self.values[k + g + p..].chunks_exact_mut(4).zip(&self.ends) {
             dst.copy_from_slice(src);
         }
         self.add(state.t);

@@ -230,9 +230,11 @@ impl RunFiles {
         wake: &[f64],
         row: &SummaryRow,
     ) -> Result<()> {
-        let x = &state.x;
         let model = &built.model;
         let mesh = &built.mesh;
+        // The mesh's nodes; a rod's twist carriers and ghost nodes follow them in the model.
+        let np = mesh.nodes.len();
+        let x = &state.x[..np];
         let finite = |name: &str, v: &[f64]| -> Result<()> {
             if let Some(i) = v.iter().position(|a| !a.is_finite()) {
                 return Err(SimError::NonFinite(format!(
@@ -250,9 +252,9 @@ impl RunFiles {
             .collect();
         let point = vec![
             BlockArray::vectors("displacement", &disp),
-            BlockArray::vectors("velocity", &state.v),
-            BlockArray::vectors("hydro_force", &out.hydro_force),
-            BlockArray::vectors("reaction", &out.reaction),
+            BlockArray::vectors("velocity", &state.v[..np]),
+            BlockArray::vectors("hydro_force", &out.hydro_force[..np]),
+            BlockArray::vectors("reaction", &out.reaction[..np]),
             BlockArray::scalar("point_mass", self.point_mass.clone()),
             BlockArray::int("supported", self.supported.clone()),
         ];
@@ -269,15 +271,29 @@ impl RunFiles {
         let tension: Vec<f64> = axial.iter().map(|&n| n.max(0.0)).collect();
         let slack: Vec<i32> = axial.iter().map(|&n| i32::from(n <= 0.0)).collect();
         let (wake_lines, wake_panels) = wake.split_at(nl.min(wake.len()));
+        let mut line = vec![
+            BlockArray::scalar("tension", tension),
+            BlockArray::int("slack", slack),
+            BlockArray::scalar("axial_force", axial.to_vec()),
+            BlockArray::scalar("strain", out.strain[..nl.min(out.strain.len())].to_vec()),
+            BlockArray::scalar("wake_factor", wake_lines.to_vec()),
+        ];
+        if !built.pipes.is_empty() {
+            // Section forces and stress of the pipes modelled as rods (docs/theory/fem.md#rod).
+            let mut stress = vec![0.0; nl];
+            crate::pipe_stress::fibre_stresses(built, out, &mut stress);
+            for (name, v) in [
+                ("bending_moment", out.bending_moment[..nl].to_vec()),
+                ("torque", out.torque[..nl].to_vec()),
+                ("fibre_stress", stress),
+            ] {
+                finite(name, &v)?;
+                line.push(BlockArray::scalar(name, v));
+            }
+        }
         let arrays = StepArrays {
             point,
-            line: vec![
-                BlockArray::scalar("tension", tension),
-                BlockArray::int("slack", slack),
-                BlockArray::scalar("axial_force", axial.to_vec()),
-                BlockArray::scalar("strain", out.strain[..nl.min(out.strain.len())].to_vec()),
-                BlockArray::scalar("wake_factor", wake_lines.to_vec()),
-            ],
+            line,
             panel: vec![BlockArray::scalar("wake_factor", wake_panels.to_vec())],
         };
         self.take_error()?;

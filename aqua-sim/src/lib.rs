@@ -34,6 +34,7 @@ pub mod error;
 pub mod extremes;
 pub mod files;
 pub mod overrides;
+pub mod pipe_stress;
 pub mod plan;
 pub mod plot;
 pub mod post;

@@ -33,6 +33,8 @@ pub struct SummaryRow {
     pub volume_ratio: f64,
     /// Largest tension per structural group [N].
     pub max_tension: Vec<f64>,
+    /// Largest fibre stress per pipe group (docs/theory/fem.md#rod) [Pa].
+    pub max_stress: Vec<f64>,
     /// Per line: |R| at the anchor, |R| at the fairlead (at an end attached to another
     /// structure instead of a support: the tension of the end element, the line's pull on
     /// it), tension of the anchor element and of the fairlead element [N].
@@ -211,6 +213,8 @@ impl SummaryRow {
         let volume = total_volume(built, x);
         let mut max_tension = vec![0.0; built.model.groups().len()];
         group_max_tensions(built, out, &mut max_tension);
+        let mut max_stress = vec![0.0; built.pipes.len()];
+        crate::pipe_stress::group_max_stresses(built, out, &mut max_stress);
         let mut line_ends = vec![[0.0; 4]; built.line_ends.len()];
         line_end_loads(built, out, &mut line_ends);
         SummaryRow {
@@ -221,6 +225,7 @@ impl SummaryRow {
             volume: volume + 0.0,
             volume_ratio: if volume0 > 0.0 { volume / volume0 } else { 0.0 },
             max_tension,
+            max_stress,
             line_ends,
             iterations,
             dt,
@@ -253,12 +258,15 @@ impl SummaryRow {
     }
 
     /// The columns of the per-group and per-line loads, in the order of [`SummaryRow::values`]:
-    /// `Tmax_<group>` per structural group, then per `[[line]]` its anchor and fairlead
-    /// reactions and end-element tensions.
+    /// `Tmax_<group>` per structural group, `stress_max_<group>` per pipe group [Pa], then
+    /// per `[[line]]` its anchor and fairlead reactions and end-element tensions.
     pub fn load_columns(built: &Built) -> Vec<String> {
         let mut c = Vec::new();
         for g in &built.group_names {
             c.push(format!("Tmax_{}", g.replace(',', "_")));
+        }
+        for p in &built.pipes {
+            c.push(format!("stress_max_{}", p.name.replace(',', "_")));
         }
         for l in &built.line_ends {
             let n = l.name.replace(',', "_");
@@ -291,6 +299,7 @@ impl SummaryRow {
         v.push(self.volume);
         v.push(self.volume_ratio);
         v.extend(&self.max_tension);
+        v.extend(&self.max_stress);
         v.extend(self.line_ends.iter().flatten());
         v.push(self.iterations as f64);
         v.push(self.dt);

@@ -249,6 +249,10 @@ pub struct FixSpec {
     /// DOFs held ("x", "y", "z"; default all).
     #[serde(default = "all_dofs")]
     pub dofs: Vec<String>,
+    /// Hold the rotation too: the tangent and the twist of the pipes (rods) through the nodes
+    /// (docs/theory/fem.md#rod).
+    #[serde(default)]
+    pub clamp: bool,
 }
 
 fn all_dofs() -> Vec<String> {

@@ -27,6 +27,10 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
     for e in model.elements() {
         union(&mut parent, e.a, e.b);
     }
+    for e in model.rod_edges() {
+        union(&mut parent, e.nodes[0], e.nodes[1]);
+        union(&mut parent, e.nodes[0], e.carrier);
+    }
     for e in 0..provider.n_elements() {
         let nodes = provider.element_nodes(e);
         for w in nodes.windows(2) {
@@ -36,6 +40,19 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
         }
     }
     (0..n).map(|i| find(&mut parent, i)).collect()
+}
+
+/// Whether DOF k of node i holds its part: constrained, and not a rod's twist carrier (whose
+/// held coordinates are placeholders, docs/theory/fem.md#rod).
+fn holds(model: &Model, i: usize, k: usize) -> bool {
+    model.is_constrained(i, k) && !model.is_twist_carrier(i)
+}
+
+/// The structure's nodes of part `r` (twist carriers left out).
+fn part_nodes(model: &Model, part: &[usize], r: usize) -> Vec<usize> {
+    (0..part.len())
+        .filter(|&j| part[j] == r && !model.is_auxiliary(j))
+        .collect()
 }
 
 /// Connected parts held by nothing.
@@ -52,8 +69,8 @@ pub(super) fn check_supported<P: LoadProvider + ?Sized>(
     let mut comp_size = vec![0usize; n];
     for i in 0..n {
         let r = part[i];
-        comp_size[r] += 1;
-        let c = (0..3).any(|k| model.is_constrained(i, k)) || held[i] || bed.acts_on(model, i);
+        comp_size[r] += usize::from(!model.is_auxiliary(i));
+        let c = (0..3).any(|k| holds(model, i, k)) || held[i] || bed.acts_on(model, i);
         comp_held[r] |= c;
     }
     for i in 0..n {
@@ -61,7 +78,7 @@ pub(super) fn check_supported<P: LoadProvider + ?Sized>(
             return Err(FemError::Unconstrained {
                 first_node: i,
                 n_nodes: comp_size[i],
-                nodes: (0..n).filter(|&j| part[j] == i).collect(),
+                nodes: part_nodes(model, part, i),
             });
         }
     }
@@ -87,7 +104,7 @@ pub(super) fn check_held_horizontally(
     for i in 0..n {
         let r = part[i];
         for k in 0..2 {
-            fixed[r][k] |= model.is_constrained(i, k);
+            fixed[r][k] |= holds(model, i, k);
             sum[r][k] += fext[i][k];
         }
         abs[r] += fext[i].iter().map(|f| f.abs()).sum::<f64>();
@@ -103,7 +120,7 @@ pub(super) fn check_held_horizontally(
             .map(|(_, d)| d)
             .collect();
         if !dirs.is_empty() {
-            let nodes: Vec<usize> = (0..n).filter(|&i| part[i] == r).collect();
+            let nodes = part_nodes(model, part, r);
             return Err(FemError::Drifting {
                 first_node: r,
                 n_nodes: nodes.len(),
@@ -136,13 +153,13 @@ pub(super) fn check_held_up<P: LoadProvider + ?Sized>(
     let (mut down, mut up) = (vec![0.0f64; n], vec![0.0f64; n]);
     for i in 0..n {
         let r = part[i];
-        held[r] |= model.is_constrained(i, 2) || bed.acts_on(model, i);
+        held[r] |= holds(model, i, 2) || bed.acts_on(model, i);
         down[r] -= model.weight[i][2] + model.point_force[i][2];
         up[r] += lift[i];
     }
     for r in 0..n {
         if part[r] == r && !held[r] && down[r] > up[r] * (1.0 + 1e-9) + 1e-9 {
-            let nodes: Vec<usize> = (0..n).filter(|&i| part[i] == r).collect();
+            let nodes = part_nodes(model, part, r);
             return Err(FemError::Sinking {
                 first_node: r,
                 n_nodes: nodes.len(),

@@ -79,6 +79,7 @@ impl System {
             )));
         }
         self.evaluate_hinges(model, x, o.jacobian.is_some())?;
+        self.evaluate_rods(model, x, o.jacobian.is_some())?;
         // Load elements.
         let nl = self.load_nn.len();
         if nl > 0 {
@@ -153,6 +154,7 @@ impl System {
                 }
             }
         }
+        self.add_rod_forces(model);
         for e in 0..nl {
             let nn = self.load_nn[e];
             let chunk = &self.load_buf[e * self.load_stride..];
@@ -271,6 +273,9 @@ impl System {
                     }
                 }
             }
+        }
+        if cf.k != 0.0 {
+            super::rods::add_tangents(&self.rod_pos, &self.rod, vals, cf.k);
         }
         // Node blocks: lumped/point mass, added mass, seabed.
         for i in 0..self.n_nodes {
@@ -410,9 +415,10 @@ impl System {
         Ok(())
     }
 
-    /// Total bending energy Σ W of the hinges at the last evaluation [J].
+    /// Total bending energy Σ W of the hinges and the rods (bending and torsion) at the last
+    /// evaluation [J].
     pub fn bending_energy(&self) -> f64 {
-        self.hinge.iter().map(|h| h.energy).sum()
+        self.hinge.iter().map(|h| h.energy).sum::<f64>() + self.rod_energy()
     }
 
     /// Per node, the largest row sum of |∂²W/∂x²| of the hinges (Gershgorin bound of the

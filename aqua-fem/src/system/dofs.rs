@@ -7,6 +7,18 @@ use crate::cable::CableEval;
 use crate::error::{FemError, Result};
 use crate::loads::{LoadProvider, MAX_LOAD_NODES};
 use crate::model::Model;
+use crate::rod::{ROD_DOFS, RodEval, RodVertex};
+
+/// The five nodes of a rod vertex's stencil: three positions and two twist carriers.
+fn rod_dof_nodes(v: &RodVertex) -> [usize; 5] {
+    [
+        v.nodes[0],
+        v.nodes[1],
+        v.nodes[2],
+        v.carriers[0],
+        v.carriers[1],
+    ]
+}
 
 fn pos_in(col_ptr: &[usize], row_idx: &[usize], row: usize, col: usize) -> usize {
     let s = &row_idx[col_ptr[col]..col_ptr[col + 1]];
@@ -72,6 +84,12 @@ impl System {
         for h in model.hinges() {
             for &p in &h.nodes {
                 adj[p].extend(h.nodes.iter().filter(|&&q| q != p));
+            }
+        }
+        for v in model.rod_vertices() {
+            let dofs = rod_dof_nodes(v);
+            for &p in &dofs {
+                adj[p].extend(dofs.iter().filter(|&&q| q != p));
             }
         }
         for (e, nodes) in load_nodes.iter().enumerate() {
@@ -143,6 +161,24 @@ impl System {
             }
             hinge_pos.push(p);
         }
+        let mut rod_pos = Vec::with_capacity(model.rod_vertices().len());
+        for v in model.rod_vertices() {
+            let mut p = [NONE; ROD_DOFS * ROD_DOFS];
+            let at = |l: usize| {
+                if l < 9 {
+                    (v.nodes[l / 3], l % 3)
+                } else {
+                    (v.carriers[l - 9], 0)
+                }
+            };
+            for i in 0..ROD_DOFS {
+                for j in 0..ROD_DOFS {
+                    let ((ni, ki), (nj, kj)) = (at(i), at(j));
+                    p[i * ROD_DOFS + j] = pos(ni, ki, nj, kj);
+                }
+            }
+            rod_pos.push(p);
+        }
         let mut node_pos = Vec::with_capacity(n);
         for i in 0..n {
             let mut p = [NONE; 9];
@@ -191,6 +227,7 @@ impl System {
             values: vec![0.0; nnz],
             cable_pos,
             hinge_pos,
+            rod_pos,
             node_pos,
             load_nodes,
             load_nn,
@@ -200,6 +237,8 @@ impl System {
             load_buf: vec![0.0; load_stride * nl],
             cable: vec![CableEval::default(); model.elements().len()],
             hinge: vec![HingeEval::default(); model.hinges().len()],
+            rod: vec![RodEval::default(); model.rod_vertices().len()],
+            rod_frames: model.rod_edges().iter().map(|e| e.frame).collect(),
             fint: vec![[0.0; 3]; n],
             fext: vec![[0.0; 3]; n],
             fhydro: vec![[0.0; 3]; n],

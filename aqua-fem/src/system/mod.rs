@@ -10,10 +10,12 @@ mod assembly;
 mod dofs;
 mod linear_solver;
 mod load_derivatives;
+mod rods;
 
 use crate::bending::HingeEval;
 use crate::cable::CableEval;
 use crate::loads::{ElementLoad, MAX_LOAD_NODES};
+use crate::rod::{EdgeFrame, ROD_DOFS, RodEval};
 use crate::symmetric::SymmetricSolver;
 pub(crate) use assembly::mul_mass;
 use linear_solver::LinearSolver;
@@ -63,6 +65,7 @@ pub(crate) struct System {
     pub values: Vec<f64>,
     cable_pos: Vec<[usize; 36]>,
     hinge_pos: Vec<[usize; 81]>,
+    rod_pos: Vec<[usize; ROD_DOFS * ROD_DOFS]>,
     node_pos: Vec<[usize; 9]>,
     load_nodes: Vec<[usize; MAX_LOAD_NODES]>,
     load_nn: Vec<usize>,
@@ -75,6 +78,11 @@ pub(crate) struct System {
     /// Per-hinge results of the last evaluation (energy, force, tangent when a Jacobian was
     /// asked for).
     pub hinge: Vec<HingeEval>,
+    /// Per-rod-vertex results of the last evaluation (docs/theory/fem.md#rod).
+    pub(crate) rod: Vec<RodEval>,
+    /// Reference frame of each rod edge: its frame at the last accepted state (as built until
+    /// a dynamic step is accepted).
+    pub(crate) rod_frames: Vec<EdgeFrame>,
     /// Internal (elastic + axial damping + Rayleigh) force, q sense [N].
     pub fint: Vec<[f64; 3]>,
     /// External forces on the structure: gravity, point forces, water loads, seabed [N].

@@ -65,6 +65,9 @@ pub struct Built {
     pub diagnostics: Vec<Diagnostic>,
     /// What the design checks look at after statics (docs/theory/farm.md#design-warnings).
     pub design: DesignChecks,
+    /// The groups of pipes modelled as rods, whose stresses are reported
+    /// (docs/theory/fem.md#rod).
+    pub pipes: Vec<crate::pipe_stress::PipeGroup>,
 }
 
 /// The two ends of a single line (docs/theory/fem.md#outputs: report end reactions and end-element
@@ -186,6 +189,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         model.environment().gravity,
     ));
     let supported_nodes: Vec<usize> = st.supported.into_iter().collect();
+    let pipes = crate::pipe_stress::pipe_groups(&st.sections, &st.group_names, &model);
     let mut line_ends = line_ends;
     for le in &mut line_ends {
         le.supported = [le.anchor, le.fairlead].map(|n| supported_nodes.contains(&n));
@@ -208,6 +212,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         external: st.external,
         diagnostics,
         design,
+        pipes,
     })
 }
 

@@ -85,7 +85,6 @@ pub(super) fn build_structure(
     }
     let (sections, group_names) = cable_groups(scene, mesh, &mut b)?;
     add_cables(&file, mesh, &sections, &mut b)?;
-    super::bending::add_hinges(&file, mesh, &sections, &mut b)?;
     // Sinkers and weights of the builders hang as point masses W/g
     // (docs/theory/cages.md#frame-ropes-and-weights).
     for w in &mesh.weights {
@@ -100,8 +99,10 @@ pub(super) fn build_structure(
     let mut hydro_points = point_bodies(scene, mesh, &mut b)?;
     let (buoy_points, buoys) = super::buoys::attach_buoys(scene, mesh, &mut b)?;
     hydro_points.extend(buoy_points);
-    let mut supported = fixed_nodes(scene, mesh, &mut b)?;
+    let (mut supported, clamped) = fixed_nodes(scene, mesh, &mut b)?;
     let external = prescribed_motions(scene, mesh, prescribed, &mut b, &mut supported)?;
+    // Last: a rod adds its twist carriers (and ghost nodes at clamps) after every node above.
+    super::bending::add_bending(&file, mesh, &sections, &clamped, &mut b)?;
     Ok(Structure {
         builder: b,
         sections,
@@ -273,10 +274,16 @@ fn point_bodies(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<Vec<
     Ok(hydro_points)
 }
 
-/// The builders' fixed groups (all DOFs) and `[[fix]]` (the listed DOFs).
-fn fixed_nodes(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<BTreeSet<usize>> {
+/// The builders' fixed groups (all DOFs) and `[[fix]]` (the listed DOFs); returns the supported
+/// nodes and the clamped ones (`clamp = true`).
+fn fixed_nodes(
+    scene: &Scene,
+    mesh: &Mesh,
+    b: &mut ModelBuilder,
+) -> Result<(BTreeSet<usize>, BTreeSet<usize>)> {
     let file = scene.path.display().to_string();
     let mut supported = BTreeSet::new();
+    let mut clamped = BTreeSet::new();
     for n in mesh.fixed_nodes() {
         b.fix(n, Dofs::ALL)
             .map_err(|e| SimError::at(format!("{file}: fixed node"), e))?;
@@ -294,9 +301,12 @@ fn fixed_nodes(scene: &Scene, mesh: &Mesh, b: &mut ModelBuilder) -> Result<BTree
         for n in nodes {
             b.fix(n, dofs).map_err(|e| SimError::at(at.clone(), e))?;
             supported.insert(n);
+            if f.value.clamp {
+                clamped.insert(n);
+            }
         }
     }
-    Ok(supported)
+    Ok((supported, clamped))
 }
 
 /// `[[prescribed]]` motions (docs/theory/fem.md#boundary-conditions), or external ones for a
