@@ -36,8 +36,10 @@ pub struct Cost {
     pub wave_components: usize,
     /// Dynamic steps at the nominal step.
     pub steps: usize,
-    /// Output steps.
+    /// Output steps (`summary.csv` rows).
     pub output_steps: usize,
+    /// Steps of the ParaView series (every `paraview_interval`).
+    pub paraview_steps: usize,
     /// Estimated static solve [s]: the expected iterations (100 + 0.012 per free DOF; 1 when
     /// nothing is free) at 6 units of Newton work each.
     pub estimated_static_seconds: f64,
@@ -254,6 +256,11 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let dynamic = kind != AnalysisKind::Static;
     let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
     let free = free_dofs(built);
+    let output_steps = if dynamic {
+        ((t_end / out_int).floor() as usize).saturating_add(1)
+    } else {
+        1
+    };
     let steps = if dynamic {
         (t_end / dt).ceil() as usize
     } else {
@@ -314,11 +321,9 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         load_elements: el.panels.len() + el.lines.len() + el.points.len(),
         wave_components: ncomp,
         steps,
-        output_steps: if dynamic {
-            ((t_end / out_int).floor() as usize).saturating_add(1)
-        } else {
-            1
-        },
+        output_steps,
+        // Output steps 0, k, 2k, … (Plan::paraview_step).
+        paraview_steps: (output_steps - 1) / prep.plan.paraview_every.max(1) + 1,
         estimated_static_seconds: estimated_static,
         estimated_dynamic_seconds: estimated_dynamic,
         estimated_seconds: estimated_static + estimated_dynamic,
