@@ -40,7 +40,13 @@ fn every_example_runs_as_documented() {
         let text = std::fs::read_to_string(f).unwrap();
         let table: toml::Table = toml::from_str(&text).unwrap();
         let path = f.to_str().unwrap();
-        if table.contains_key("scene") {
+        if name.contains("full-scale") {
+            let (code, out, err) = aqua(&["check", path, "--json"]);
+            assert_eq!(code, 0, "{name}: {err}");
+            let report: serde_json::Value = serde_json::from_str(&out).unwrap();
+            let dofs = report["cost"]["dofs"].as_u64().unwrap();
+            assert!(dofs >= 80_000, "{name}: {dofs} free DOFs");
+        } else if table.contains_key("scene") {
             let (code, out, err) = aqua(&["sweep", path]);
             assert_eq!(code, 0, "{name}: {err}");
             assert!(out.contains("cases of"), "{name}: {out}");

@@ -254,6 +254,81 @@ fn chain_scene(dir: &Path, t_end: f64, extra: &str) -> PathBuf {
     p
 }
 
+/// `analysis.dynamic.paraview_interval` thins the ParaView series and nothing else: 3 s of the
+/// chain with rows every 0.1 s and ParaView steps every 0.5 s gives 3/0.1 + 1 = 31
+/// `summary.csv` rows, 3/0.5 + 1 = 7 `.vtm` files (each with its `.vtu` blocks) at t = 0, 0.5,
+/// … 3, the same times as every fifth row; an interval that is not a whole multiple of the
+/// output interval is refused naming the file, key, value and what is valid.
+#[test]
+fn paraview_series_is_written_every_paraview_interval() {
+    let dir = scratch("paraview-interval");
+    let scene = chain_scene(&dir, 3.0, "");
+    let out = dir.join("out");
+    let (code, _, err) = aqua(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--quiet",
+        "--set",
+        "analysis.dynamic.paraview_interval=0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let times: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(times.len(), 31, "{times:?}");
+    let entries = assert_consistent(&out.join("mooring-chain.pvd"));
+    assert_eq!(entries.len(), 7, "{entries:?}");
+    for (k, (t, _)) in entries.iter().enumerate() {
+        assert!((t - 0.5 * k as f64).abs() < 1e-9, "step {k} at t = {t}");
+        assert!(
+            (t - times[5 * k]).abs() < 1e-9,
+            "step {k}: row {}",
+            times[5 * k]
+        );
+    }
+    // One block directory per ParaView step, each holding .vtu files.
+    let step_dirs: Vec<PathBuf> = std::fs::read_dir(&out)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_dir() && !p.ends_with("mooring-chain_reference"))
+        .collect();
+    assert_eq!(step_dirs.len(), 7, "{step_dirs:?}");
+    for d in &step_dirs {
+        let vtu = std::fs::read_dir(d)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.path().extension().is_some_and(|x| x == "vtu"))
+            .count();
+        assert!(vtu > 0, "{} has no .vtu", d.display());
+    }
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run.json")).unwrap()).unwrap();
+    assert_eq!(run["output_steps"], 31);
+    assert_eq!(run["paraview_steps"], 7);
+    for bad in ["0.25", "0.05", "-1"] {
+        let (code, _, err) = aqua(&[
+            "check",
+            scene.to_str().unwrap(),
+            "--set",
+            &format!("analysis.dynamic.paraview_interval={bad}"),
+        ]);
+        assert_eq!(code, 2, "{bad}: {err}");
+        assert!(
+            err.contains("chain.toml")
+                && err.contains(&format!("analysis.dynamic.paraview_interval = {bad}"))
+                && err.contains("whole multiple")
+                && err.contains("0.1 s"),
+            "{err}"
+        );
+    }
+}
+
 /// `aqua run SCENE --out OUT --quiet` in the background, stderr captured.
 fn spawn_quiet_run(scene: &Path, out: &Path) -> std::process::Child {
     Command::new(env!("CARGO_BIN_EXE_aqua"))

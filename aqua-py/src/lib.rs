@@ -135,7 +135,7 @@ struct Collect<'a> {
 impl Observer for Collect<'_> {
     fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
         if let Some(files) = &mut self.files {
-            files.write_step(self.built, f.state, f.outputs, f.wake, f.row)?;
+            files.write_frame(self.built, f)?;
         }
         self.rows.push(f.row.values());
         self.positions.extend(f.state.x.iter().flatten());

@@ -5,11 +5,13 @@
 use crate::build::Built;
 use crate::diagnostic::Diagnostic;
 use crate::error::Result;
+use crate::estimate::{Driving, Workload};
 use crate::plan::Prepared;
 use crate::run::water_loads;
 use crate::scene::AnalysisKind;
 use aqua_env::Phase;
 use aqua_hydro::MorisonModel;
+use aqua_mesh::ObjectKind;
 use serde::Serialize;
 
 /// One physical effect and whether the scene needs it.
@@ -36,15 +38,19 @@ pub struct Cost {
     pub wave_components: usize,
     /// Dynamic steps at the nominal step.
     pub steps: usize,
-    /// Output steps.
+    /// Output steps (`summary.csv` rows).
     pub output_steps: usize,
-    /// Estimated static solve [s]: the expected iterations (100 + 0.012 per free DOF; 1 when
-    /// nothing is free) at 6 units of Newton work each.
+    /// Steps of the ParaView series (every `paraview_interval`).
+    pub paraview_steps: usize,
+    /// Estimated static solve [s]: the expected Newton iterations (more the finer the net)
+    /// times the cost of one ([`crate::estimate`]).
     pub estimated_static_seconds: f64,
-    /// Estimated dynamics [s]: ~4 Newton iterations per nominal step.
+    /// Estimated dynamics [s]: the expected Newton iterations (step halvings included) times
+    /// the cost of one ([`crate::estimate`]).
     pub estimated_dynamic_seconds: f64,
     /// Rough wall-time estimate [s], the sum of the two (measured constants of this code on a
-    /// 2-core machine; within 3× of the bundled examples' measured wall times).
+    /// 2-core machine; within 2× of the bundled examples' measured wall times,
+    /// docs/notes/check-estimate.md).
     pub estimated_seconds: f64,
 }
 
@@ -284,75 +290,75 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
     let dynamic = kind != AnalysisKind::Static;
     let (dt, out_int, t_end) = (prep.plan.dt, prep.plan.output_interval, prep.plan.t_end);
     let free = free_dofs(built);
+    let output_steps = if dynamic {
+        ((t_end / out_int).floor() as usize).saturating_add(1)
+    } else {
+        1
+    };
     let steps = if dynamic {
         (t_end / dt).ceil() as usize
     } else {
         0
     };
-    // Calibrated separately on the bundled examples (release build, 2 cores; figures in
-    // docs/theory/fem.md#static-solver). One Newton iteration of the structure costs about
-    // 1.2 µs per cable element + 0.6 µs per load element, plus, in dynamics only, 200 ns per
-    // wave component and node (the static phase sees the current alone).
-    let per_iter = 1.2e-6 * built.model.elements().len() as f64
-        + 0.6e-6 * (el.panels.len() + el.lines.len() + el.points.len()) as f64;
-    let per_iter_dynamic = per_iter + 200e-9 * (ncomp * built.model.n_nodes()) as f64;
-    // Statics (Levenberg–Marquardt, docs/theory/fem.md#static-solver): the iterations grow
-    // slowly with the free DOFs (10 m cage 60 for ~250, buoy mooring 92 for 129, moored cage
-    // 94 for 1143, reference cage 130 for 3027, 1.25 m cage 274 for ~12 000), each about 2.5
-    // of these units (factorisation, Jacobian with finite-difference water-load derivatives,
-    // trial evaluations). Measured against `analysis.kind = "static"` runs (2026-12-05):
-    // reference cage 1.3 s estimated for 1.41–1.44 s, farm 1.6 s for 1.24–1.30 s, moored cage
-    // 0.3 s for 0.20 s, buoy mooring 20 ms for 10 ms, mooring chain 5.4 ms for 4–5 ms.
-    // Lines alone (no net, as panels or twines; nothing floating) start from their stretched touchdown
-    // shape and take 12–15 iterations at 80–1280 segments (2026-12-05).
+    // The wall-time model: crate::estimate (data in docs/notes/check-estimate.md).
     let lines_only = el.panels.is_empty()
         && !el.lines.iter().any(|l| l.net_twine)
         && built.design.floaters.is_empty();
-    let static_iterations = if free == 0 {
-        1.0
-    } else if lines_only {
-        15.0
-    } else {
-        100.0 + 0.012 * free as f64
-    };
-    let estimated_static = if kind != AnalysisKind::Dynamic {
-        2.5 * per_iter * static_iterations
-    } else {
-        0.0
-    };
-    // Dynamics: Newton iterations per nominal step, step halvings included (measured on the
-    // bundled examples): 10 when something floats on slack lines in waves (collars, buoys),
-    // where the step is halved to milliseconds and grows back only partly (with the midpoint
-    // rule's line relaxation, 2026-12-04: moored cage 55, farm 34; 2026-12-05 with the run on
-    // a pool worker, the GMRES rescue and θ = 0.75 for the farm: moored 46, farm 20). The unit
-    // cost above overestimates theirs 3–5× since their loops run on both cores, so 10 keeps
-    // both within 2× of the measured wall: moored 29 s for 28 s, farm 50 s for 29 s); ~2 where a
-    // prescribed motion drives a stiff line (mooring chain 3.5; 2.0 since its line relaxation
-    // and seabed relaxation, 2026-12-05); otherwise ~1.5 (reference
-    // cage 1.0, buoy mooring in a current 1.0).
-    let iterations_per_step = if !built.design.floaters.is_empty() && ncomp > 0 {
-        10.0
+    let driving = if !dynamic {
+        Driving::None
+    } else if !built.design.floaters.is_empty() && ncomp > 0 {
+        Driving::FloatingInWaves
     } else if built.model.n_prescribed_motions() > 0 {
-        2.0
+        Driving::Prescribed
     } else {
-        1.5
+        Driving::Steady
     };
-    let estimated_dynamic = per_iter_dynamic * iterations_per_step * steps as f64;
+    let work = Workload {
+        free_dofs: free,
+        elements: built.model.elements().len() + el.panels.len() + el.lines.len() + el.points.len(),
+        net_dofs_squared: net_dofs_squared(built),
+        wave_points: ncomp * built.model.n_nodes(),
+        lines_only,
+        statics: kind != AnalysisKind::Dynamic,
+        driving,
+        steps,
+        t_end,
+    };
+    let estimated_static = work.static_seconds();
+    let estimated_dynamic = work.dynamic_seconds();
     Cost {
         dofs: free,
         cable_elements: built.model.elements().len(),
         load_elements: el.panels.len() + el.lines.len() + el.points.len(),
         wave_components: ncomp,
         steps,
-        output_steps: if dynamic {
-            ((t_end / out_int).floor() as usize).saturating_add(1)
-        } else {
-            1
-        },
+        output_steps,
+        // Output steps 0, k, 2k, … (Plan::paraview_step).
+        paraview_steps: (output_steps - 1) / prep.plan.paraview_every.max(1) + 1,
         estimated_static_seconds: estimated_static,
         estimated_dynamic_seconds: estimated_dynamic,
         estimated_seconds: estimated_static + estimated_dynamic,
     }
+}
+
+/// Σ over the nets (cages, panels, imported meshes) of their free DOFs squared: what their
+/// factorisations cost ([`crate::estimate`]).
+fn net_dofs_squared(built: &Built) -> f64 {
+    let (mesh, model) = (&built.mesh, &built.model);
+    let mut nets: std::collections::HashMap<(u32, u32), usize> = Default::default();
+    for (i, &owner) in mesh.node_owner.iter().enumerate().take(model.n_nodes()) {
+        let net = mesh.objects.get(owner.0 as usize).is_some_and(|o| {
+            matches!(
+                o.kind,
+                ObjectKind::Cage(_) | ObjectKind::Panel | ObjectKind::Gmsh
+            )
+        });
+        if net {
+            *nets.entry(owner).or_default() +=
+                (0..3).filter(|&k| !model.is_constrained(i, k)).count();
+        }
+    }
+    nets.values().map(|&n| (n as f64).powi(2)).sum()
 }
 
 /// The seabed-friction line of `aqua check` (docs/theory/fem.md#seabed-friction).

@@ -3,7 +3,9 @@
 //! undeformed geometry once (`<scene>_reference.vtm`), a pvpython starting point
 //! (`open_in_paraview.py`), `summary.csv` (one row per output step), `extremes.csv` (the
 //! extremes of the load columns over every accepted step, [`crate::extremes`]) and `run.json`
-//! (resolved scene, name tables, final values, extremes, timing).
+//! (resolved scene, name tables, final values, extremes, timing). Every output step is a
+//! `summary.csv` row; only every `paraview_interval` is it also a step of the ParaView series
+//! ([`RunFiles::write_frame`]).
 //!
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
@@ -72,12 +74,15 @@ pub struct RunFiles {
 #[derive(Debug, Default)]
 struct Written {
     steps: usize,
+    paraview_steps: usize,
     error: Option<SimError>,
 }
 
 /// Work for the writer thread.
 enum Job {
     Step(Box<StepJob>),
+    /// A `summary.csv` row alone (an output step that is not a ParaView step).
+    Row(String),
     /// Flush `summary.csv` and answer once every earlier job is done.
     Sync(std::sync::mpsc::Sender<()>),
 }
@@ -108,6 +113,20 @@ impl Disk {
                     let r = self.write(&step);
                     let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
                     match r {
+                        Ok(()) => {
+                            w.steps += 1;
+                            w.paraview_steps += 1;
+                        }
+                        Err(e) => {
+                            w.error.get_or_insert(e);
+                            failed = true;
+                        }
+                    }
+                }
+                Job::Row(line) if !failed => {
+                    let r = self.write_row(&line);
+                    let mut w = shared.lock().unwrap_or_else(|e| e.into_inner());
+                    match r {
                         Ok(()) => w.steps += 1,
                         Err(e) => {
                             w.error.get_or_insert(e);
@@ -115,7 +134,7 @@ impl Disk {
                         }
                     }
                 }
-                Job::Step(_) => {}
+                Job::Step(_) | Job::Row(_) => {}
                 Job::Sync(done) => {
                     let _ = done.send(());
                 }
@@ -125,13 +144,18 @@ impl Disk {
 
     /// The step's `summary.csv` row (flushed), then its blocks, `.vtm` and `.pvd` line.
     fn write(&mut self, step: &StepJob) -> Result<()> {
-        writeln!(self.csv, "{}", step.csv_line)
-            .and_then(|_| self.csv.flush())
-            .map_err(io("writing", &self.csv_path))?;
+        self.write_row(&step.csv_line)?;
         self.series
             .write_step(step.t, &self.mesh, &step.positions, &step.arrays)
             .map_err(|e| SimError::Output(Box::new(e)))?;
         Ok(())
+    }
+
+    /// A `summary.csv` row, flushed.
+    fn write_row(&mut self, line: &str) -> Result<()> {
+        writeln!(self.csv, "{line}")
+            .and_then(|_| self.csv.flush())
+            .map_err(io("writing", &self.csv_path))
     }
 }
 
@@ -221,6 +245,32 @@ impl RunFiles {
         &self.names
     }
 
+    /// Writes an output frame of the run loop: its `summary.csv` row, and, when it is a step of
+    /// the ParaView series (`frame.paraview`), its blocks, `.vtm` and `.pvd` line.
+    pub fn write_frame(&mut self, built: &Built, frame: &crate::run::Frame<'_>) -> Result<()> {
+        if frame.paraview {
+            self.write_step(built, frame.state, frame.outputs, frame.wake, frame.row)
+        } else {
+            self.write_row(frame.row)
+        }
+    }
+
+    /// Writes a `summary.csv` row alone (an output step that is not a ParaView step).
+    pub fn write_row(&mut self, row: &SummaryRow) -> Result<()> {
+        self.take_error()?;
+        self.send(Job::Row(row.values_text().join(",")))
+    }
+
+    /// Hands a job to the writer thread.
+    fn send(&mut self, job: Job) -> Result<()> {
+        if self.tx.as_ref().is_none_or(|tx| tx.send(job).is_err()) {
+            // A write error found meanwhile explains the closed queue better.
+            self.take_error()?;
+            return Err(self.writer_gone());
+        }
+        Ok(())
+    }
+
     /// Writes one output step: the blocks, the `.vtm` (and `.pvd` line) and a `summary.csv` row.
     pub fn write_step(
         &mut self,
@@ -303,12 +353,7 @@ impl RunFiles {
             arrays,
             csv_line: row.values_text().join(","),
         }));
-        if self.tx.as_ref().is_none_or(|tx| tx.send(job).is_err()) {
-            // A write error found meanwhile explains the closed queue better.
-            self.take_error()?;
-            return Err(self.writer_gone());
-        }
-        Ok(())
+        self.send(job)
     }
 
     /// Waits until every handed-over step is written and `summary.csv` is flushed; returns
@@ -327,10 +372,19 @@ impl RunFiles {
         self.failed.is_some()
     }
 
-    /// Output steps on disk (after waiting for those handed over).
+    /// Output steps (`summary.csv` rows) on disk (after waiting for those handed over).
     pub fn steps_written(&self) -> usize {
         self.sync();
         self.shared.lock().unwrap_or_else(|e| e.into_inner()).steps
+    }
+
+    /// Steps of the ParaView series on disk (after waiting for those handed over).
+    pub fn paraview_steps_written(&self) -> usize {
+        self.sync();
+        self.shared
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .paraview_steps
     }
 
     /// Waits for the writer thread to finish what it was given; false when it is not there.

@@ -31,6 +31,7 @@ pub mod coupling;
 pub mod design;
 pub mod diagnostic;
 pub mod error;
+pub mod estimate;
 pub mod extremes;
 pub mod files;
 pub mod overrides;

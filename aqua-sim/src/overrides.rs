@@ -35,6 +35,7 @@ pub const ALIASES: &[(&str, &[&str])] = &[
     ("alpha", &["analysis.dynamic.alpha"]),
     ("theta", &["analysis.dynamic.theta"]),
     ("output_interval", &["analysis.dynamic.output_interval"]),
+    ("paraview_interval", &["analysis.dynamic.paraview_interval"]),
     (
         "element_length",
         &["cage.*.element_length", "panel.*.element_length"],

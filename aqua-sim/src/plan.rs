@@ -31,8 +31,11 @@ pub struct Plan {
     pub alpha: f64,
     /// Nominal step [s] (0 for statics).
     pub dt: f64,
-    /// Output interval [s] (0 for statics).
+    /// Output interval [s] (0 for statics): a `summary.csv` row every interval.
     pub output_interval: f64,
+    /// Output steps per step of the ParaView series (`paraview_interval / output_interval`,
+    /// ≥ 1; 1 for statics): output step n is written to ParaView when n is a multiple of it.
+    pub paraview_every: usize,
     /// End time [s] (0 for statics).
     pub t_end: f64,
 }
@@ -97,10 +100,12 @@ impl Plan {
                 alpha: 0.0,
                 dt: 0.0,
                 output_interval: 0.0,
+                paraview_every: 1,
                 t_end: 0.0,
             });
         }
         let (dt, output_interval, t_end) = timing(scene)?;
+        let paraview_every = paraview_every(scene, output_interval)?;
         // The midpoint rule has no α; an α given for HHT is still validated.
         let alpha = match alpha(scene)? {
             _ if scene.analysis.dynamic.scheme == crate::scene::Scheme::Midpoint => 0.0,
@@ -145,8 +150,20 @@ impl Plan {
             alpha,
             dt,
             output_interval,
+            paraview_every,
             t_end,
         })
+    }
+
+    /// The interval of the ParaView series [s] (0 for statics).
+    pub fn paraview_interval(&self) -> f64 {
+        self.output_interval * self.paraview_every as f64
+    }
+
+    /// Whether output step `n` (0 = the first, static or initial state) goes to the ParaView
+    /// series as well as to `summary.csv`.
+    pub fn paraview_step(&self, n: usize) -> bool {
+        n.is_multiple_of(self.paraview_every.max(1))
     }
 }
 
@@ -239,4 +256,24 @@ fn timing(scene: &Scene) -> Result<(f64, f64, f64)> {
         )));
     }
     Ok((dt, out.max(dt), d.t_end))
+}
+
+/// Output steps per ParaView step: `analysis.dynamic.paraview_interval` (default the output
+/// interval `out` [s]) over `out`, validated to be a whole number ≥ 1.
+fn paraview_every(scene: &Scene, out: f64) -> Result<usize> {
+    let Some(p) = scene.analysis.dynamic.paraview_interval else {
+        return Ok(1);
+    };
+    let ratio = p / out;
+    let k = ratio.round();
+    // A relative tolerance: 0.3 / 0.1 is 2.9999999999999996 in floating point.
+    if p.is_finite() && k >= 1.0 && (ratio - k).abs() <= 1e-6 * k && k <= MAX_STEPS {
+        return Ok(k as usize);
+    }
+    Err(SimError::input(format!(
+        "{}: analysis.dynamic.paraview_interval = {p}: a whole multiple (1, 2, 3, …) of the \
+         output interval, {out} s (`output_interval`; every summary.csv row is an output step \
+         and every k-th of them also a ParaView step)",
+        scene.path.display()
+    )))
 }

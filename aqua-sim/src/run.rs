@@ -105,6 +105,9 @@ pub struct Frame<'a> {
     pub wake: &'a [f64],
     /// The summary row.
     pub row: &'a SummaryRow,
+    /// This output step is also a step of the ParaView series (every
+    /// `analysis.dynamic.paraview_interval`; [`crate::plan::Plan::paraview_step`]).
+    pub paraview: bool,
 }
 
 /// What the caller does with a run as it goes. Every method has a do-nothing default.
@@ -358,6 +361,7 @@ impl<'p> Simulation<'p> {
             outputs,
             wake: &wake,
             row: &row,
+            paraview: self.prep.plan.paraview_step(record.frames),
         })?;
         record.frames += 1;
         record.last = Some(row);

@@ -421,6 +421,11 @@ pub struct DynamicSpec {
     /// Output interval [s] (default max(dt, t_end/200); at least every step).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub output_interval: Option<f64>,
+    /// Interval of the ParaView series [s] (default: the output interval): a whole multiple of
+    /// the output interval, so that a large model writes its `.vtm`/`.vtu` files less often
+    /// than its `summary.csv` rows.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paraview_interval: Option<f64>,
     /// Largest strain before a step is rejected.
     pub max_strain: f64,
     /// Modified Newton: reuse one LU factorisation for up to this many iterations while each
@@ -458,6 +463,7 @@ impl Default for DynamicSpec {
             rayleigh: hht.rayleigh,
             cfl: explicit.cfl,
             output_interval: None,
+            paraview_interval: None,
             max_strain: hht.max_strain,
             reuse_factor: hht.reuse_factor,
             linear_solver: hht.linear_solver,

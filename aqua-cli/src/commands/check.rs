@@ -73,13 +73,14 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     }
     let c = &report.cost;
     println!(
-        "cost: {} free DOFs, {} cable elements, {} load elements, {} wave components; {} dynamic steps, {} output steps; estimated {:.1} s (statics {:.1} s, dynamics {:.1} s)",
+        "cost: {} free DOFs, {} cable elements, {} load elements, {} wave components; {} dynamic steps, {} output steps ({} in the ParaView series); estimated {:.1} s (statics {:.1} s, dynamics {:.1} s)",
         c.dofs,
         c.cable_elements,
         c.load_elements,
         c.wave_components,
         c.steps,
         c.output_steps,
+        c.paraview_steps,
         c.estimated_seconds,
         c.estimated_static_seconds,
         c.estimated_dynamic_seconds

@@ -94,8 +94,7 @@ impl Observer for Terminal<'_> {
             .set_message(format!("{:.2} s, {steps} steps", report.t));
     }
     fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
-        self.files
-            .write_step(&self.prep.built, f.state, f.outputs, f.wake, f.row)
+        self.files.write_frame(&self.prep.built, f)
     }
     fn stop_requested(&self) -> bool {
         interrupted()
@@ -245,6 +244,7 @@ fn run_json(
             "alpha": plan.alpha,
             "dt": plan.dt,
             "output_interval": plan.output_interval,
+            "paraview_interval": plan.paraview_interval(),
             "t_end": plan.t_end,
             "structural_groups": &built.group_names,
         },
@@ -253,6 +253,7 @@ fn run_json(
         "final": record.last,
         "extremes": record.extremes.as_ref().map(|e| e.to_json()),
         "output_steps": files.steps_written(),
+        "paraview_steps": files.paraview_steps_written(),
         "pvd": files.pvd_path(),
         "paraview_script": files.dir().join("open_in_paraview.py"),
         "names": files.names(),

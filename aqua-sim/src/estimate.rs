@@ -1,0 +1,248 @@
+//! The wall-time model behind `aqua check`'s cost estimate: Newton iterations expected for the
+//! statics and the dynamics, times the cost of one iteration, from the counts of the model.
+//! Measured constants of this code, release build on the 2-core development machine; the
+//! measurements that set them, and how far each example's estimate is from its measured wall,
+//! are in docs/notes/check-estimate.md.
+//!
+//! One Newton iteration costs a part proportional to the elements (evaluation and assembly of
+//! the cables and water loads; in dynamics also the sea at every node and wave component) and
+//! a part for the sparse factorisation, which grows faster than the unknowns: each net is a
+//! 2-D mesh whose factor fills in, measured as growing with the square of the net's free DOFs
+//! (the cages of a farm are separate nets joined by a few bridle DOFs, so a farm of 8 cages
+//! costs 8 cages, not one net of 8 times the DOFs). The static solver needs more iterations
+//! the finer the net (docs/theory/fem.md#static-solver): 76 / 108 / 333 iterations on the
+//! reference cage at 5 / 2.5 / 1.25 m elements.
+
+/// How the dynamic phase is driven, which sets its Newton iterations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Driving {
+    /// No dynamic phase.
+    #[default]
+    None,
+    /// Something floats on slack lines in waves (collars, buoys): the step is halved to
+    /// milliseconds and grows back only partly.
+    FloatingInWaves,
+    /// A prescribed motion drives a stiff line.
+    Prescribed,
+    /// Anything else (current, waves on fixed structures).
+    Steady,
+}
+
+/// The counts the estimate depends on.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Workload {
+    /// Free DOFs.
+    pub free_dofs: usize,
+    /// Cable elements plus water-load elements (panels, lines, points).
+    pub elements: usize,
+    /// Σ over the nets (cages, panels, imported meshes) of their free DOFs squared.
+    pub net_dofs_squared: f64,
+    /// Wave components × nodes (the sea is evaluated at every node in dynamics).
+    pub wave_points: usize,
+    /// Nothing but lines (no net, nothing floating): the statics start from the stretched
+    /// touchdown shape.
+    pub lines_only: bool,
+    /// A static solve is part of the run.
+    pub statics: bool,
+    /// The dynamic phase.
+    pub driving: Driving,
+    /// Dynamic steps at the nominal step.
+    pub steps: usize,
+    /// Simulated time of the dynamic phase [s].
+    pub t_end: f64,
+}
+
+/// Seconds per static iteration and element (cables and water loads, the water-load
+/// Jacobian by finite differences, trial evaluations of the line search).
+pub const STATIC_PER_ELEMENT: f64 = 1.8e-6;
+/// Seconds per static iteration and squared free DOF of a net (its factorisation).
+pub const STATIC_PER_NET_DOF2: f64 = 5.3e-10;
+/// Seconds per dynamic iteration and element.
+pub const DYNAMIC_PER_ELEMENT: f64 = 0.7e-6;
+/// Seconds per dynamic iteration, node and wave component.
+pub const DYNAMIC_PER_WAVE_POINT: f64 = 30e-9;
+/// Seconds per dynamic iteration and squared free DOF of a net (the factor is reused across
+/// iterations while it preconditions well, so less than in statics).
+pub const DYNAMIC_PER_NET_DOF2: f64 = 1.1e-10;
+/// Newton iterations per simulated second when something floats on slack lines in waves
+/// (halvings included; farm 189, moored cage 255).
+pub const FLOATING_ITERATIONS_PER_SECOND: f64 = 220.0;
+
+impl Workload {
+    /// Expected Newton iterations of the static solve: 2 evaluations when nothing is free,
+    /// 13.5 for lines alone, else 80 + 0.022 per free DOF (the reference-cage ladder 76 /
+    /// 108 / 333 at 795 / 3 027 / 12 387 DOFs, the farm 156 and 211 at 4 605 and 10 113).
+    pub fn static_iterations(&self) -> f64 {
+        if self.free_dofs == 0 {
+            2.0
+        } else if self.lines_only {
+            13.5
+        } else {
+            80.0 + 0.022 * self.free_dofs as f64
+        }
+    }
+
+    /// Seconds per static Newton iteration.
+    pub fn static_iteration_seconds(&self) -> f64 {
+        STATIC_PER_ELEMENT * self.elements as f64 + STATIC_PER_NET_DOF2 * self.net_dofs_squared
+    }
+
+    /// Estimated static solve [s] (0 without one).
+    pub fn static_seconds(&self) -> f64 {
+        if !self.statics {
+            return 0.0;
+        }
+        self.static_iterations() * self.static_iteration_seconds()
+    }
+
+    /// Expected Newton iterations of the dynamic phase, step halvings included.
+    pub fn dynamic_iterations(&self) -> f64 {
+        match self.driving {
+            Driving::None => 0.0,
+            Driving::FloatingInWaves => FLOATING_ITERATIONS_PER_SECOND * self.t_end,
+            // Mooring chain 2.05 per step (line and seabed relaxation).
+            Driving::Prescribed => 2.0 * self.steps as f64,
+            // Reference cage and buoy mooring in a current: 1.0 per step.
+            Driving::Steady => 1.2 * self.steps as f64,
+        }
+    }
+
+    /// Seconds per dynamic Newton iteration.
+    pub fn dynamic_iteration_seconds(&self) -> f64 {
+        DYNAMIC_PER_ELEMENT * self.elements as f64
+            + DYNAMIC_PER_WAVE_POINT * self.wave_points as f64
+            + DYNAMIC_PER_NET_DOF2 * self.net_dofs_squared
+    }
+
+    /// Estimated dynamic phase [s] (0 without one).
+    pub fn dynamic_seconds(&self) -> f64 {
+        self.dynamic_iterations() * self.dynamic_iteration_seconds()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cage net refined by `r` halvings of its element length from a 5 m cage: 4× the
+    /// elements and free DOFs per halving, one net.
+    fn cage(r: i32) -> Workload {
+        let f = 4f64.powi(r);
+        let dofs = (795.0 * f) as usize;
+        Workload {
+            free_dofs: dofs,
+            elements: (1176.0 * f) as usize,
+            net_dofs_squared: (dofs as f64).powi(2),
+            statics: true,
+            driving: Driving::Steady,
+            steps: 100,
+            t_end: 10.0,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn estimate_grows_with_every_count() {
+        let base = cage(1);
+        let total = |w: &Workload| w.static_seconds() + w.dynamic_seconds();
+        let more = [
+            Workload {
+                free_dofs: base.free_dofs + 1000,
+                ..base
+            },
+            Workload {
+                elements: base.elements + 1000,
+                ..base
+            },
+            Workload {
+                net_dofs_squared: base.net_dofs_squared * 2.0,
+                ..base
+            },
+            Workload {
+                wave_points: 10_000,
+                ..base
+            },
+            Workload {
+                steps: base.steps * 2,
+                ..base
+            },
+        ];
+        for (k, w) in more.iter().enumerate() {
+            assert!(total(w) > total(&base), "count {k}: {w:?}");
+        }
+        // Monotone along the refinement ladder, in both phases.
+        for r in 0..4 {
+            let (a, b) = (cage(r), cage(r + 1));
+            assert!(b.static_seconds() > a.static_seconds(), "{r}");
+            assert!(b.dynamic_seconds() > a.dynamic_seconds(), "{r}");
+        }
+    }
+
+    /// The statics of a net cost more than its DOFs: more iterations and dearer ones at every
+    /// halving of the element length (docs/theory/fem.md#static-solver). Each halving
+    /// quadruples the DOFs; the estimate must grow by more than 4^1.3 (the target
+    /// slope, which today's solver does not meet), while the cost of a dynamic step, at the
+    /// same number of steps, grows at least linearly.
+    #[test]
+    fn statics_grow_super_linearly_with_refinement() {
+        for r in 0..3 {
+            let (a, b) = (cage(r), cage(r + 1));
+            let dofs = b.free_dofs as f64 / a.free_dofs as f64;
+            let stat = b.static_seconds() / a.static_seconds();
+            assert!(
+                stat > dofs.powf(1.3),
+                "halving {r}: statics × {stat:.2} for DOFs × {dofs:.2}"
+            );
+            assert!(b.static_iterations() > a.static_iterations());
+            let dynamic = b.dynamic_seconds() / a.dynamic_seconds();
+            assert!(
+                dynamic >= 0.99 * dofs,
+                "halving {r}: dynamics × {dynamic:.2}"
+            );
+        }
+    }
+
+    /// A farm of n separate nets costs n nets, not one net of n times the DOFs: the
+    /// factorisation term adds over the nets.
+    #[test]
+    fn separate_nets_cost_their_sum() {
+        let one = cage(2);
+        let eight = Workload {
+            free_dofs: 8 * one.free_dofs,
+            elements: 8 * one.elements,
+            net_dofs_squared: 8.0 * one.net_dofs_squared,
+            ..one
+        };
+        let per = |w: &Workload| w.static_iteration_seconds();
+        assert!((per(&eight) / per(&one) - 8.0).abs() < 1e-9);
+        let merged = Workload {
+            net_dofs_squared: (8.0 * one.free_dofs as f64).powi(2),
+            ..eight
+        };
+        assert!(per(&merged) > 2.0 * per(&eight));
+    }
+
+    #[test]
+    fn nothing_free_or_lines_alone_take_few_iterations() {
+        let none = Workload {
+            statics: true,
+            elements: 500,
+            ..Default::default()
+        };
+        assert_eq!(none.static_iterations(), 2.0);
+        let lines = Workload {
+            free_dofs: 3000,
+            lines_only: true,
+            ..none
+        };
+        assert!(lines.static_iterations() < 20.0);
+        assert_eq!(none.dynamic_seconds(), 0.0);
+        let floating = Workload {
+            driving: Driving::FloatingInWaves,
+            t_end: 30.0,
+            steps: 300,
+            ..none
+        };
+        assert_eq!(floating.dynamic_iterations(), 220.0 * 30.0);
+    }
+}
