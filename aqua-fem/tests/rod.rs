@@ -380,3 +380,82 @@ fn midpoint_keeps_the_energy_of_a_swinging_twisting_pipe() {
     assert!(max_bend > 1.0, "the pipe hardly bent: {max_bend} N m");
     assert!(worst <= 1e-6 * scale, "energy error {worst} J of {scale} J");
 }
+
+/// The bending moment the rod reports at the load points of a pinched ring converges to
+/// thin-ring theory's P·R/π as the ring is refined (the moment is a nodal value of a kinked
+/// moment diagram there, so the error falls like the edge length).
+#[test]
+fn pinched_ring_moment_at_the_load_converges_to_pr_over_pi() {
+    let (r, ei, p) = (8.0f64, 4.4e5, 10.0);
+    let mut errs = Vec::new();
+    for n in [24usize, 48, 96, 192] {
+        let mut b = ModelBuilder::new(no_gravity());
+        let nodes: Vec<usize> = (0..n)
+            .map(|i| {
+                let phi = 2.0 * PI * i as f64 / n as f64;
+                b.add_node([r * phi.cos(), r * phi.sin(), 0.0]).unwrap()
+            })
+            .collect();
+        joined(&mut b, &nodes, 1e5 * ei / (r * r), true);
+        let sec = RodSection {
+            ei,
+            gj: ei / 1.4,
+            spin_inertia: 0.0,
+        };
+        b.add_rod(&nodes, sec, true, [false, false]).unwrap();
+        let q = n / 4;
+        for &nd in &nodes {
+            b.fix(
+                nd,
+                Dofs {
+                    x: false,
+                    y: false,
+                    z: true,
+                },
+            )
+            .unwrap();
+        }
+        b.fix(
+            nodes[0],
+            Dofs {
+                x: false,
+                y: true,
+                z: true,
+            },
+        )
+        .unwrap();
+        b.fix(
+            nodes[2 * q],
+            Dofs {
+                x: false,
+                y: true,
+                z: true,
+            },
+        )
+        .unwrap();
+        b.fix(
+            nodes[q],
+            Dofs {
+                x: true,
+                y: false,
+                z: true,
+            },
+        )
+        .unwrap();
+        load(&mut b, nodes[0], [-p, 0.0, 0.0]);
+        load(&mut b, nodes[2 * q], [p, 0.0, 0.0]);
+        let m = b.build().unwrap();
+        let sol = statics(&m);
+        let peak = sol
+            .outputs
+            .bending_moment
+            .iter()
+            .fold(0.0, |a: f64, &b| a.max(b));
+        errs.push((peak / (p * r / PI) - 1.0).abs());
+    }
+    eprintln!("moment errors n = 24, 48, 96, 192: {errs:?}");
+    for w in errs.windows(2) {
+        assert!(w[1] < 0.6 * w[0], "no convergence: {errs:?}");
+    }
+    assert!(errs[3] < 0.02, "{errs:?}");
+}
