@@ -1,6 +1,7 @@
 //! Static equilibrium: a Levenberg–Marquardt Newton method whose damping is steered by an
 //! energy merit (strain and seabed energy, other loads frozen at the iterate), a backtracking
-//! line search on that merit, load continuation only when a full-load solve fails, and a
+//! line search on that merit, a retry without it when a solve fails, load continuation only
+//! when that fails too, and a
 //! round-off convergence floor (docs/theory/fem.md#static-solver).
 
 mod settings;
@@ -122,6 +123,9 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     /// Progress reported so far (load factor, damping).
     progress: StaticProgress,
     history: Vec<f64>,
+    /// Backtracking along rejected steps is off (the retry of a failed increment, see
+    /// `solve_static_observed`).
+    no_backtracking: bool,
     observer: &'o mut dyn FnMut(&StaticProgress) -> StaticControl,
 }
 
@@ -217,6 +221,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
             relative_residual: f64::NAN,
         },
         history: Vec::new(),
+        no_backtracking: false,
         observer,
     };
     // A part that nothing holds horizontally cannot balance a horizontal load: say so now
@@ -279,7 +284,17 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                 s_stop = s;
                 break;
             }
+            Err(_) if settings.line_search && !ctx.no_backtracking => {
+                // Backtracking on the frozen-load merit can cycle when the water loads are not
+                // conservative: the increment is solved once more from the same start with
+                // full (damped) steps only, before any load step is halved
+                // (docs/theory/fem.md#static-solver).
+                report.rejected_increments += 1;
+                ctx.no_backtracking = true;
+                mu = settings.stabilisation;
+            }
             Err(f) => {
+                ctx.no_backtracking = false;
                 report.rejected_increments += 1;
                 ds *= 0.5;
                 if ds < settings.min_load_step {
@@ -543,7 +558,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         first: usize,
         watch: bool,
     ) -> Trial {
-        let tries = if self.st.line_search {
+        let tries = if self.st.line_search && !self.no_backtracking {
             BACKTRACKS + 1
         } else {
             1
