@@ -1,8 +1,9 @@
 //! A model-scale cage with a flat bottom and light sinkers in a weak current: the net streams
 //! downstream, its flat bottom of slack twines nearly along the flow, and the water loads
 //! (orientation-dependent screen drag and lift, the wake of the upstream half) are not
-//! conservative. Backtracking on the frozen-load energy merit then cycled without end on this
-//! cage; the static solve must still find the equilibrium (docs/theory/fem.md#static-solver).
+//! conservative. Backtracking on an energy merit with the loads frozen at the iterate then
+//! cycled without end on this cage; the static solve must still find the equilibrium
+//! (docs/theory/fem.md#static-solver).
 
 use aqua_env::Phase;
 use aqua_fem::solve_static;
@@ -10,8 +11,9 @@ mod common;
 use common::*;
 
 /// The cage: 1.75 m across, 1.5 m deep, flat bottom, Sn 0.347 (twine 1.41 mm, half mesh
-/// 8.3 mm, E = 40 MPa), 6.5 N per metre of sinkers, top ring fixed, fresh water, 0.26 m/s.
-fn scene(element_length: f64) -> String {
+/// 8.3 mm, E = 40 MPa), 6.5 N per metre of sinkers, top ring fixed, fresh water; the current
+/// `speed` [m/s] along x, the screen model and the wake model as given.
+fn scene(element_length: f64, screen: &str, speed: f64, wake: &str) -> String {
     format!(
         r#"name = "slack-bottom"
 [sea]
@@ -21,7 +23,7 @@ density = 1000.0
 kinematic_viscosity = 1.0e-6
 [sea.current]
 kind = "uniform"
-velocity = [0.26, 0.0, 0.0]
+velocity = [{speed}, 0.0, 0.0]
 
 [[cage]]
 type = "CSM"
@@ -39,8 +41,8 @@ net.half_mesh = 8.3e-3
 net.solidity = 0.347
 net.youngs_modulus = 4.0e7
 net.density = 1140.0
-net.screen_model = "S1"
-net.wake = {{ model = "loland" }}
+net.screen_model = "{screen}"
+net.wake = {{ model = "{wake}" }}
 [cage.groups.ropes]
 diameter = 0.002
 youngs_modulus = 1.0e9
@@ -64,26 +66,33 @@ kind = "static"
     )
 }
 
-/// At 0.22 m elements the solver before the retry without backtracking gave up ("static
-/// solve failed at load factor 1e-4" after halving the load 14 times). The equilibrium found
-/// must balance: internal forces cancel in pairs, so the support reactions and the water loads
-/// sum to zero along x and y (weights, sinkers and buoyancy are vertical; the net never reaches
-/// the bed), to the solver's tolerance summed over the free DOFs.
-#[test]
-fn flat_bottomed_light_cage_in_weak_current_reaches_equilibrium() {
-    let dir = scratch("slack-bottom");
+/// Solves the cage at 0.22 m elements and checks the equilibrium: internal forces cancel in
+/// pairs, so the support reactions and the water loads must sum to zero along x and y
+/// (weights, sinkers and buoyancy are vertical), to the solver's tolerance summed over the
+/// free DOFs; the drag points downstream.
+fn solve_and_check_balance(screen: &str, speed: f64, wake: &str) {
+    let case = format!("{screen} at {speed} m/s, wake {wake}");
+    let dir = scratch(&format!("slack-bottom-{screen}-{speed}-{wake}"));
     let path = dir.join("cage.toml");
-    std::fs::write(&path, scene(0.22)).unwrap();
+    std::fs::write(&path, scene(0.22, screen, speed, wake)).unwrap();
     let prep = aqua_sim::prepare(&path).unwrap();
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
     let sol = solve_static(&prep.built.model, &mut loads, &prep.plan.statics)
-        .unwrap_or_else(|e| panic!("static solve failed: {e}"));
+        .unwrap_or_else(|e| panic!("{case}: static solve failed: {e}"));
     let rep = &sol.report;
     assert!(!rep.interrupted);
+    // The cost of the whole solve, wake re-solves included (at most 700 here; on bi2014 at
+    // 0.26 m/s without wake the solver before the retry and the trapezoidal work either gave
+    // up or took more than 6 000, through load continuation).
+    assert!(
+        rep.iterations <= 1_500,
+        "{case}: {} Newton iterations",
+        rep.iterations
+    );
     let tol = prep.plan.statics.tol;
     assert!(
         rep.relative_residual <= tol,
-        "‖r‖/F_ref = {}",
+        "{case}: ‖r‖/F_ref = {}",
         rep.relative_residual
     );
     let out = &sol.outputs;
@@ -96,11 +105,35 @@ fn flat_bottomed_light_cage_in_weak_current_reaches_equilibrium() {
         let b: f64 = out.seabed_force.iter().map(|f| f[k]).sum();
         assert!(
             (r + h + b).abs() <= bound,
-            "axis {k}: reactions {r} N + water loads {h} N + bed {b} N (bound {bound:.2e} N)"
+            "{case}, axis {k}: reactions {r} N + water loads {h} N + bed {b} N (bound {bound:.2e} N)"
         );
         drag[k] = h;
     }
-    // The current pushes downstream; the cage is symmetric about the x–z plane.
-    assert!(drag[0] > 10.0, "drag {} N", drag[0]);
-    assert!(drag[1].abs() <= 1e-6 * drag[0], "side force {} N", drag[1]);
+    // No check of the side force: bi2014 at 0.26 m/s without wake settles on an asymmetric
+    // equilibrium (side force 1.2 N of 58 N drag; the solver before this one found its mirror
+    // image at 0.172 m elements).
+    assert!(drag[0] > 10.0, "{case}: drag {} N", drag[0]);
+}
+
+/// S1 at 0.26 m/s with the Løland wake: the solver that froze the loads in its merit and had
+/// no retry gave up ("static solve failed at load factor 1e-4" after halving the load 14
+/// times, about a minute).
+#[test]
+fn s1_cage_reaches_equilibrium_at_both_speeds_with_and_without_wake() {
+    for speed in [0.26, 0.5] {
+        for wake in ["loland", "none"] {
+            solve_and_check_balance("S1", speed, wake);
+        }
+    }
+}
+
+/// bi2014 at 0.26 m/s without wake: the same solver gave up, or converged only after more
+/// than 6 000 iterations of load continuation.
+#[test]
+fn bi2014_cage_reaches_equilibrium_at_both_speeds_with_and_without_wake() {
+    for speed in [0.26, 0.5] {
+        for wake in ["loland", "none"] {
+            solve_and_check_balance("bi2014", speed, wake);
+        }
+    }
 }
