@@ -1,6 +1,8 @@
 //! Static equilibrium: a Levenberg–Marquardt Newton method whose damping is steered by an
-//! energy merit (strain and seabed energy, other loads frozen at the iterate), a backtracking
-//! line search on that merit, load continuation only when a full-load solve fails, and a
+//! energy merit (strain and seabed energy, the work of the other loads by the trapezoidal
+//! rule along the step), a backtracking
+//! line search on that merit, a retry without it when a solve fails, load continuation only
+//! when that fails too, and a
 //! round-off convergence floor (docs/theory/fem.md#static-solver).
 
 mod settings;
@@ -95,8 +97,8 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     zero: Vec<[f64; 3]>,
     /// Σ EA/L0 over each node's elements [N/m]: the damping matrix D.
     d_node: Vec<f64>,
-    /// External force without the seabed on the free DOFs at the iterate (frozen in the
-    /// merit) [N].
+    /// External force without the seabed on the free DOFs at the iterate (one end of the
+    /// merit's trapezoidal work) [N].
     f_frozen: Vec<f64>,
     /// Element lengths at the iterate [m].
     len_x: Vec<f64>,
@@ -122,6 +124,9 @@ struct Ctx<'m, 'p, 'o, P: LoadProvider + ?Sized> {
     /// Progress reported so far (load factor, damping).
     progress: StaticProgress,
     history: Vec<f64>,
+    /// Backtracking along rejected steps is off (the retry of a failed increment, see
+    /// `solve_static_observed`).
+    no_backtracking: bool,
     observer: &'o mut dyn FnMut(&StaticProgress) -> StaticControl,
 }
 
@@ -217,6 +222,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
             relative_residual: f64::NAN,
         },
         history: Vec::new(),
+        no_backtracking: false,
         observer,
     };
     // A part that nothing holds horizontally cannot balance a horizontal load: say so now
@@ -279,7 +285,17 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
                 s_stop = s;
                 break;
             }
+            Err(_) if settings.line_search && !ctx.no_backtracking => {
+                // With loads that have no potential, backtracked steps (which keep μ small) may
+                // circle the equilibrium: the increment is solved once more from the same start
+                // with full damped steps only, before any load step is halved
+                // (docs/theory/fem.md#static-solver).
+                report.rejected_increments += 1;
+                ctx.no_backtracking = true;
+                mu = settings.stabilisation;
+            }
             Err(f) => {
+                ctx.no_backtracking = false;
                 report.rejected_increments += 1;
                 ds *= 0.5;
                 if ds < settings.min_load_step {
@@ -443,15 +459,16 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     }
 
     /// Decrease of the merit from `self.x` to `self.x_trial` (evaluated): strain (axial and
-    /// bending, docs/theory/fem.md#bending) and seabed energy exactly, the other external forces frozen at `self.x`, so that its gradient at
-    /// `self.x` is the residual (docs/theory/fem.md#static-solver). Positive when the trial
-    /// is better.
+    /// bending, docs/theory/fem.md#bending) and seabed energy exactly, the work of the other
+    /// external forces by the trapezoidal rule between `self.x` and the trial, so that its
+    /// gradient at `self.x` is the residual (docs/theory/fem.md#static-solver). Positive when
+    /// the trial is better.
     fn merit_decrease(&self) -> f64 {
         self.merit_decrease_from(&self.x, &self.len_x, self.bend_x, &self.f_frozen)
     }
 
     /// Merit decrease from a base point (positions, element lengths, bending energy and
-    /// frozen external force there) to `self.x_trial` (evaluated).
+    /// external force there) to `self.x_trial` (evaluated).
     fn merit_decrease_from(&self, x0: &[[f64; 3]], len0: &[f64], bend0: f64, f0: &[f64]) -> f64 {
         let mut dw = self.sys.bending_energy() - bend0;
         for ((e, c), &l_x) in self.model.elements().iter().zip(&self.sys.cable).zip(len0) {
@@ -464,10 +481,14 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 dw += bed.energy_change(self.model, i, x0[i][2], self.x_trial[i][2]);
             }
         }
+        // Work of the other external forces by the trapezoidal rule between the base point and
+        // the trial: their change along the step counts to first order, as in the quadratic
+        // model, whose tangent holds the water loads' ∂f/∂x.
         let mut work = 0.0;
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             let (i, k) = (gd / 3, gd % 3);
-            work += f0[f] * (self.x_trial[i][k] - x0[i][k]);
+            let f_trial = self.sys.fext[i][k] - self.sys.fbed[i][k];
+            work += 0.5 * (f0[f] + f_trial) * (self.x_trial[i][k] - x0[i][k]);
         }
         work - dw
     }
@@ -543,7 +564,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         first: usize,
         watch: bool,
     ) -> Trial {
-        let tries = if self.st.line_search {
+        let tries = if self.st.line_search && !self.no_backtracking {
             BACKTRACKS + 1
         } else {
             1
