@@ -189,7 +189,7 @@ pub struct StaticFailure {
          {reason}; worst node {worst_node} at {worst_position:?} with residual \
          {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
          {max_strain:.4e}), most compressed element {min_strain_element} (strain \
-         {min_strain:.4e}); residual history {}. Hints: smaller dt, larger alpha, \
+         {min_strain:.4e}); residual history {}. Hints: smaller dt, {scheme_hint}, \
          check supports and slack parts",
     brief(.history)
 )]
@@ -218,4 +218,7 @@ pub struct StepFailure {
     pub min_strain: f64,
     /// ‖r‖/F_ref per iteration of the last attempt.
     pub history: Vec<f64>,
+    /// What the scheme that failed can change: more numerical damping (HHT-α's `alpha`,
+    /// the midpoint rule's `theta`) or the other scheme.
+    pub scheme_hint: String,
 }

@@ -46,6 +46,18 @@ impl Scheme {
         }
     }
 
+    /// What a user can change in this scheme when a step fails: its numerical damping.
+    pub(crate) fn failure_hint(&self) -> String {
+        match self {
+            Self::Hht(_) => {
+                "a larger `alpha` or a smaller `rho_inf` (HHT-α's high-frequency damping)".into()
+            }
+            Self::Midpoint(_) => "`theta` above 0.5 (the energy-decaying midpoint rule, e.g. \
+                 0.6 to 0.75)"
+                .into(),
+        }
+    }
+
     /// Coefficients of ∂r/∂x_{n+1} = m·M + k·K + c·C for a step h [s].
     pub(crate) fn coef(&self, h: f64) -> Coef {
         match self {
@@ -183,5 +195,20 @@ impl Scheme {
             Self::Hht(_) => c.switch < 1.0,
             Self::Midpoint(_) => c.switch < 1.0 && c.tension < 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_step_names_the_damping_of_its_own_scheme() {
+        let mut st = DynamicSettings::new(0.1, 1.0);
+        let hht = Scheme::new(&st, 3).failure_hint();
+        st.midpoint = true;
+        let mid = Scheme::new(&st, 3).failure_hint();
+        assert!(hht.contains("alpha") && !hht.contains("theta"), "{hht}");
+        assert!(mid.contains("theta") && !mid.contains("alpha"), "{mid}");
     }
 }

@@ -353,6 +353,7 @@ impl DynamicSolver<'_> {
             min_strain_element: mins.0,
             min_strain: mins.1,
             history: fail.history,
+            scheme_hint: self.scheme.failure_hint(),
         }))
     }
 }
