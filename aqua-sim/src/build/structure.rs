@@ -298,6 +298,14 @@ fn fixed_nodes(
             y: has("y"),
             z: has("z"),
         };
+        if f.value.clamp && !(dofs.x && dofs.y && dofs.z) {
+            return Err(SimError::input(format!(
+                "{at}: clamp = true with dofs = {:?}: a clamp holds the node's position and the \
+                 pipe's rotation there, so `dofs` must hold all of \"x\", \"y\", \"z\" (leave it \
+                 out)",
+                f.value.dofs
+            )));
+        }
         for n in nodes {
             b.fix(n, dofs).map_err(|e| SimError::at(at.clone(), e))?;
             supported.insert(n);
