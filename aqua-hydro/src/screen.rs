@@ -6,7 +6,7 @@
 use crate::cylinder;
 use crate::error::{HydroError, check_positive};
 use serde::{Deserialize, Serialize};
-use std::f64::consts::{FRAC_1_SQRT_2, PI};
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 use std::fmt;
 use std::str::FromStr;
 
@@ -164,12 +164,26 @@ fn s5_pd(t: f64) -> (f64, f64) {
     horner(&C, t)
 }
 
-/// S5 lift polynomial P_L(θ) and its derivative.
+/// Inflow angle [rad] from which S5's lift is tapered to zero at θ = π/2
+/// (docs/theory/hydrodynamics.md#model-s5).
+const S5_TAPER_FROM: f64 = 80.0 * PI / 180.0;
+
+/// S5 lift P_L(θ)·w(θ) and its derivative: the fitted polynomial, tapered by the smoothstep
+/// w = 3u² − 2u³, u = (π/2 − θ)/(π/2 − θ₀), above θ₀ = 80° so that it vanishes with the flow in
+/// the net plane (the fit leaves 0.045 there).
 fn s5_pl(t: f64) -> (f64, f64) {
     const C: [f64; 10] = [
         0.01294, 0.2325, 2.103, -7.97, 59.14, -181.6, 257.3, -187.9, 69.22, -10.22,
     ];
-    horner(&C, t)
+    let (p, dp) = horner(&C, t);
+    if t <= S5_TAPER_FROM {
+        return (p, dp);
+    }
+    let span = FRAC_PI_2 - S5_TAPER_FROM;
+    let u = ((FRAC_PI_2 - t) / span).clamp(0.0, 1.0);
+    let w = u * u * (3.0 - 2.0 * u);
+    let dw = -6.0 * u * (1.0 - u) / span;
+    (p * w, dp * w + p * dw)
 }
 
 /// Polynomial with coefficients lowest order first: value and derivative.
@@ -506,6 +520,38 @@ mod tests {
         close(s6.cd_cl(0.0, 0.2, 1000.0).0, 0.35184, 5e-12);
         close(s6.cd_cl(deg(45.0), 0.2, 1000.0).0, 0.1243942249, 5e-11);
         close(s6.cd_cl(deg(45.0), 0.2, 1000.0).1, 0.0, 0.0);
+    }
+
+    /// S5's lift goes to zero as the flow turns into the net plane, continuously and with a
+    /// continuous derivative, and is the fitted polynomial below 80°.
+    #[test]
+    fn s5_lift_vanishes_with_the_flow_in_the_net_plane() {
+        let sn = 0.3;
+        assert_eq!(ScreenModel::S5.cd_cl(FRAC_PI_2, sn, 1000.0).1, 0.0);
+        // Untouched below the taper: the polynomial itself.
+        let t = deg(75.0);
+        let (p, _) = horner(
+            &[
+                0.01294, 0.2325, 2.103, -7.97, 59.14, -181.6, 257.3, -187.9, 69.22, -10.22,
+            ],
+            t,
+        );
+        close(ScreenModel::S5.cd_cl(t, sn, 1000.0).1, sn * p, 1e-15);
+        // Continuous through 80° and down to zero without a jump; derivative by differences.
+        let mut prev = ScreenModel::S5.cd_cl(deg(79.0), sn, 1000.0).1;
+        for k in 1..=110 {
+            let th = deg(79.0 + 0.1 * f64::from(k));
+            let cl = ScreenModel::S5.cd_cl(th, sn, 1000.0).1;
+            assert!(
+                (cl - prev).abs() < 2e-3 * sn,
+                "jump at {} deg: {prev} -> {cl}",
+                79.0 + 0.1 * f64::from(k)
+            );
+            prev = cl;
+        }
+        let (h, t) = (1e-6, deg(85.0));
+        let fd = (s5_pl(t + h).0 - s5_pl(t - h).0) / (2.0 * h);
+        close(s5_pl(t).1, fd, 1e-6);
     }
 
     #[test]

@@ -70,7 +70,7 @@ kind = "static"
 /// pairs, so the support reactions and the water loads must sum to zero along x and y
 /// (weights, sinkers and buoyancy are vertical), to the solver's tolerance summed over the
 /// free DOFs; the drag points downstream.
-fn solve_and_check_balance(screen: &str, speed: f64, wake: &str) {
+fn solve_and_check_balance(screen: &str, speed: f64, wake: &str, max_iterations: usize) {
     let case = format!("{screen} at {speed} m/s, wake {wake}");
     let dir = scratch(&format!("slack-bottom-{screen}-{speed}-{wake}"));
     let path = dir.join("cage.toml");
@@ -81,9 +81,10 @@ fn solve_and_check_balance(screen: &str, speed: f64, wake: &str) {
         .unwrap_or_else(|e| panic!("{case}: static solve failed: {e}"));
     let rep = &sol.report;
     assert!(!rep.interrupted);
-    // The cost of the whole solve, wake re-solves included (at most 700 here).
+    // The cost of the whole solve, wake re-solves included.
+    eprintln!("{case}: {} Newton iterations", rep.iterations);
     assert!(
-        rep.iterations <= 1_500,
+        rep.iterations <= max_iterations,
         "{case}: {} Newton iterations",
         rep.iterations
     );
@@ -120,7 +121,8 @@ fn solve_and_check_balance(screen: &str, speed: f64, wake: &str) {
 fn s1_cage_reaches_equilibrium_at_both_speeds_with_and_without_wake() {
     for speed in [0.26, 0.5] {
         for wake in ["loland", "none"] {
-            solve_and_check_balance("S1", speed, wake);
+            // At most 700 here.
+            solve_and_check_balance("S1", speed, wake, 1_500);
         }
     }
 }
@@ -130,7 +132,16 @@ fn s1_cage_reaches_equilibrium_at_both_speeds_with_and_without_wake() {
 fn bi2014_cage_reaches_equilibrium_at_both_speeds_with_and_without_wake() {
     for speed in [0.26, 0.5] {
         for wake in ["loland", "none"] {
-            solve_and_check_balance("bi2014", speed, wake);
+            solve_and_check_balance("bi2014", speed, wake, 1_500);
         }
     }
+}
+
+/// S5 at 0.26 m/s without wake: its fitted lift did not vanish with the flow in the net plane,
+/// so the streaming bottom rested on a jump of the lift and the solve gave up; with the lift
+/// tapered to zero there (docs/theory/hydrodynamics.md#model-s5) it reaches equilibrium (2 387
+/// iterations). At 0.5 m/s with the Løland wake S5 still gives up (docs/notes/statics-gives-up.md).
+#[test]
+fn s5_cage_reaches_equilibrium_with_its_lift_tapered_in_the_net_plane() {
+    solve_and_check_balance("S5", 0.26, "none", 4_000);
 }
