@@ -138,7 +138,9 @@ impl Observer for Collect<'_> {
             files.write_frame(self.built, f)?;
         }
         self.rows.push(f.row.values());
-        self.positions.extend(f.state.x.iter().flatten());
+        // The mesh's nodes (a rod's twist carriers follow them in the model).
+        let np = self.built.mesh.nodes.len();
+        self.positions.extend(f.state.x[..np].iter().flatten());
         self.tensions.extend(&f.outputs.tension);
         Ok(())
     }
@@ -185,7 +187,7 @@ fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<O
         rows: c.rows,
         positions: c.positions,
         tensions: c.tensions,
-        n_nodes: prep.built.model.n_nodes(),
+        n_nodes: prep.built.mesh.nodes.len(),
         n_elements: prep.built.model.elements().len(),
         status: record.ending.as_str().to_string(),
         extremes: record
@@ -425,7 +427,7 @@ impl Coupling {
         self.forces(py, f)
     }
 
-    /// Positions of all nodes [m], (n_nodes, 3).
+    /// Positions of the mesh nodes [m], (n_nodes, 3).
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let x = self.with(|c| c.positions())?;
         let n = x.len();

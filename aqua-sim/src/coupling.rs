@@ -387,10 +387,14 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
                 }
                 Ok(point_forces(&prep, s.outputs()))
             })()),
-            Request::Positions => Reply::Positions(match (&solver, &initial) {
-                (Some(s), _) => s.state().x.clone(),
-                (None, Some((st, _))) => st.x.clone(),
-                (None, None) => model.nodes().to_vec(),
+            // The mesh's nodes (a rod's twist carriers follow them in the model).
+            Request::Positions => Reply::Positions({
+                let np = prep.built.mesh.nodes.len();
+                match (&solver, &initial) {
+                    (Some(s), _) => s.state().x[..np].to_vec(),
+                    (None, Some((st, _))) => st.x[..np].to_vec(),
+                    (None, None) => model.nodes()[..np].to_vec(),
+                }
             }),
         };
         if tx.send(reply).is_err() {
