@@ -202,44 +202,15 @@ fn pinched_ring(
     // Rigid-body modes held: x-axis nodes in y, the y-axis nodes in x; vertical springs of a
     // waterplane (every node), or z held.
     let q = n / 4;
-    b.fix(
-        nodes[0],
-        Dofs {
-            x: false,
-            y: true,
-            z: false,
-        },
-    )
-    .unwrap();
-    b.fix(
-        nodes[2 * q],
-        Dofs {
-            x: false,
-            y: true,
-            z: false,
-        },
-    )
-    .unwrap();
-    b.fix(
-        nodes[q],
-        Dofs {
-            x: true,
-            y: false,
-            z: false,
-        },
-    )
-    .unwrap();
-    for &nd in &nodes {
-        if hold_z {
-            b.fix(
-                nd,
-                Dofs {
-                    x: false,
-                    y: false,
-                    z: true,
-                },
-            )
-            .unwrap();
+    let hold = |b: &mut ModelBuilder, node: usize, [x, y, z]: [bool; 3]| {
+        b.fix(node, Dofs { x, y, z }).unwrap();
+    };
+    hold(&mut b, nodes[0], [false, true, false]);
+    hold(&mut b, nodes[2 * q], [false, true, false]);
+    hold(&mut b, nodes[q], [true, false, false]);
+    if hold_z {
+        for &nd in &nodes {
+            hold(&mut b, nd, [false, false, true]);
         }
     }
     load(&mut b, nodes[0], [-p, 0.0, 0.0]);
