@@ -26,6 +26,7 @@ use crate::cylinder::RE_CRISIS;
 use crate::error::{HydroError, check_non_negative, check_positive, check_solidity};
 use crate::line::{self, LineProps};
 use crate::morison::MorisonModel;
+use crate::net_triangle::TwineMap;
 use crate::panel::{self, M3, NetProps, V3, Want};
 use crate::point::{self, PointProps, PointShape};
 use crate::screen::{RE_MAX, ScreenModel};
@@ -74,6 +75,9 @@ pub struct NetPanel {
     pub net: NetProps,
     /// Index of the cage copy (wake group) it belongs to, if any.
     pub wake_group: Option<usize>,
+    /// The twine map of a net triangle, whose solidity then follows its twines
+    /// (docs/theory/hydrodynamics.md#net-triangle-screen); `None`: `net.solidity` holds.
+    pub twines: Option<TwineMap>,
 }
 
 /// A Morison line element (rope, pipe, chain, numerical net twine).
@@ -866,8 +870,16 @@ impl LoadAssembly {
                     };
                     let p = [pn[nodes[0]], pn[nodes[1]], pn[nodes[2]]];
                     let zeta = [zn[nodes[0]], zn[nodes[1]], zn[nodes[2]]];
-                    let t =
-                        panel::triangle(&panel.net, p, zeta, w, weight, self.rho, self.nu, want);
+                    // A net triangle's solidity follows its twines; its Jacobian holds it
+                    // fixed (docs/theory/hydrodynamics.md#net-triangle-screen).
+                    let net = match &panel.twines {
+                        Some(map) => NetProps {
+                            solidity: map.solidity(&p, panel.net.twine_diameter),
+                            ..panel.net
+                        },
+                        None => panel.net,
+                    };
+                    let t = panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
                     if t.reynolds > 0.0 {
                         re_lo = re_lo.min(t.reynolds);
                         re_hi = re_hi.max(t.reynolds);
