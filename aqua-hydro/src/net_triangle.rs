@@ -56,19 +56,25 @@ impl TwineMap {
     /// [`MAX_TRIANGLE_SOLIDITY`].
     pub fn solidity(&self, p: &[V3; 3], d: f64) -> f64 {
         let (u, v) = self.twines(p);
-        let cell = u.cross(&v).norm();
-        let covered = d * (u.norm() + v.norm()) - d * d;
-        if cell <= covered / MAX_TRIANGLE_SOLIDITY {
-            MAX_TRIANGLE_SOLIDITY
-        } else {
-            (covered / cell).max(0.0)
-        }
+        solidity(&u, &v, d)
     }
 
     /// The opening angle between the U and V twines [rad], in [0, π].
     pub fn opening_angle(&self, p: &[V3; 3]) -> f64 {
         let (u, v) = self.twines(p);
         u.angle(&v)
+    }
+}
+
+/// Solidity of a mesh cell of twine vectors `u`, `v` [m] and twine diameter `d` [m], capped at
+/// [`MAX_TRIANGLE_SOLIDITY`].
+pub fn solidity(u: &V3, v: &V3, d: f64) -> f64 {
+    let cell = u.cross(v).norm();
+    let covered = d * (u.norm() + v.norm()) - d * d;
+    if cell <= covered / MAX_TRIANGLE_SOLIDITY {
+        MAX_TRIANGLE_SOLIDITY
+    } else {
+        (covered / cell).max(0.0)
     }
 }
 

@@ -68,6 +68,9 @@ pub struct Built {
     /// The groups of pipes modelled as rods, whose stresses are reported
     /// (docs/theory/fem.md#rod).
     pub pipes: Vec<crate::pipe_stress::PipeGroup>,
+    /// Per mesh panel: its net triangle in the model, if it is one
+    /// (docs/theory/fem.md#net-triangle).
+    pub panel_triangle: Vec<Option<usize>>,
 }
 
 /// The two ends of a single line (docs/theory/fem.md#outputs: report end reactions and end-element
@@ -213,6 +216,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         diagnostics,
         design,
         pipes,
+        panel_triangle: st.panel_triangle,
     })
 }
 
