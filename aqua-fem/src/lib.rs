@@ -119,6 +119,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod net_triangle;
 mod rod;
 mod seabed;
 pub mod state;
@@ -141,6 +142,9 @@ pub use model::{
     RodSection, Seabed, Support, UnstretchedLength,
 };
 pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use net_triangle::{
+    NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
+};
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use state::{Outputs, State};
 pub use statics::{
