@@ -146,6 +146,13 @@ impl LineRelaxation {
                 eligible[nd] = false;
             }
         }
+        // A net triangle couples its corners to nodes off the chain and is not in the local
+        // model: its nodes are no line's interior (docs/theory/fem.md#net-triangle).
+        for t in model.net_triangles() {
+            for &nd in &t.nodes {
+                eligible[nd] = false;
+            }
+        }
         for nodes in sys.load_element_nodes() {
             for &i in nodes {
                 if !eligible[i] {

@@ -72,8 +72,9 @@ impl DynamicSolver<'_> {
             mv,
         );
         let mut b = Balance {
-            // Axial and bending (docs/theory/fem.md#bending) strain energy.
-            strain: out.strain_energy(model) + self.sys.bending_energy(),
+            // Axial, bending (docs/theory/fem.md#bending) and net triangle strain energy.
+            strain: out.strain_energy(model) + self.sys.element_energy(),
+            power: self.sys.net_damping_power(model),
             ..Balance::default()
         };
         for i in 0..n {
