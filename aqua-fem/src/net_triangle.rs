@@ -276,6 +276,22 @@ impl NetTriangle {
         self.area_uv * (w(u) + w(v))
     }
 
+    /// The twine family ("U" or "V") whose vector reversed its direction between positions
+    /// `x0` and `x1` while it resisted (taut at either end, or r_c > 0): the true motion would
+    /// have passed through zero length (the step guard, docs/theory/fem.md#step-control).
+    pub(crate) fn turned_over(&self, x0: &[[f64; 3]], x1: &[[f64; 3]]) -> Option<&'static str> {
+        let (u0, v0) = self.twine_vectors(x0);
+        let (u1, v1) = self.twine_vectors(x1);
+        let l0 = self.twine.l0;
+        [("U", u0, u1), ("V", v0, v1)]
+            .into_iter()
+            .find(|&(_, a, b)| {
+                let taut = dot(a, a) > l0 * l0 || dot(b, b) > l0 * l0;
+                dot(a, b) < 0.0 && (taut || self.twine.rc > 0.0)
+            })
+            .map(|(f, _, _)| f)
+    }
+
     /// Internal force ∂E/∂x_k on each corner k at node positions `x` (all nodes), static law
     /// (no damping): A_uv·(a_k·T_u·û + b_k·T_v·v̂) [N]; the force the twines apply to the node is
     /// its negative.
@@ -416,5 +432,22 @@ mod tests {
             assert!((t.uv_area() - a).abs() < 1e-14);
         }
         assert!(NetTriangle::new([0, 1, 2], [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]], 0, &s).is_none());
+    }
+
+    /// The step guard: a taut U family whose vector reverses is reported; a slack one that
+    /// folds through (tension-only, nothing resists) is not, unless r_c > 0.
+    #[test]
+    fn a_twine_family_that_reverses_while_taut_is_caught() {
+        let uv = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let s = NetTriangleSection::new(1e3, 0.1, 1e-3);
+        let t = NetTriangle::new([0, 1, 2], uv, 0, &s).unwrap();
+        let x0 = [[0.0; 3], [0.11, 0.0, 0.0], [0.0, 0.1, 0.0]];
+        let x1 = [[0.0; 3], [-0.05, 0.0, 0.0], [0.0, 0.1, 0.0]];
+        assert_eq!(t.turned_over(&x0, &x1), Some("U"));
+        assert_eq!(t.turned_over(&x0, &x0), None);
+        let slack = [[0.0; 3], [0.05, 0.0, 0.0], [0.0, 0.1, 0.0]];
+        assert_eq!(t.turned_over(&slack, &x1), None);
+        let t = NetTriangle::new([0, 1, 2], uv, 0, &s.with_compression_ratio(0.1)).unwrap();
+        assert_eq!(t.turned_over(&slack, &x1), Some("U"));
     }
 }

@@ -772,3 +772,145 @@ fn same_result_on_one_and_two_threads() {
     let two = pool(2).install(run);
     assert!(one == two, "results differ between 1 and 2 threads");
 }
+
+/// Triangles whose corners are the knots of a square mesh (each cell cut in two, A_uv = ½)
+/// hold, per triangle, half of two bars of the cell: each interior bar is shared by two cells
+/// and counted whole, each bar on the panel's edge counted half (the other half of that twine
+/// belongs to netting beyond the edge). So they are exactly the bar network with edge bars at
+/// half EA: under the same point loads (a net hung from its top corners, pulled down and aside,
+/// with slack twines) statics put every knot at the same place.
+#[test]
+fn knot_triangles_are_the_bar_network_with_half_edge_bars() {
+    let (nx, nz, lp, ea) = (6, 5, 0.1, 300.0);
+    let id = |i: usize, j: usize| j * (nx + 1) + i;
+    let solve = |triangles: bool| {
+        let mut b = ModelBuilder::new(no_gravity());
+        for j in 0..=nz {
+            for i in 0..=nx {
+                // As built a little off the knots' rest positions (the solver must move them).
+                let w = 0.002 * ((i * 7 + j * 3) % 5) as f64;
+                b.add_node([i as f64 * lp + w, w, -(j as f64) * lp])
+                    .unwrap();
+            }
+        }
+        if triangles {
+            let g = b
+                .add_net_triangle_group("net", NetTriangleSection::new(ea, lp, 1e-3))
+                .unwrap();
+            for j in 0..nz {
+                for i in 0..nx {
+                    let c = |a: usize, bb: usize| ([a as f64, bb as f64], id(a, bb));
+                    let (p00, p10, p11, p01) = (c(i, j), c(i + 1, j), c(i + 1, j + 1), c(i, j + 1));
+                    // Alternate the diagonal: the bars are the same either way.
+                    let halves = if (i + j) % 2 == 0 {
+                        [[p00, p10, p11], [p00, p11, p01]]
+                    } else {
+                        [[p00, p10, p01], [p10, p11, p01]]
+                    };
+                    for h in halves {
+                        b.add_net_triangle(g, h.map(|p| p.1), h.map(|p| p.0))
+                            .unwrap();
+                    }
+                }
+            }
+        } else {
+            let inner = b.add_group("inner", CableSection::new(ea, 1e-3)).unwrap();
+            let edge = b
+                .add_group("edge", CableSection::new(0.5 * ea, 0.5e-3))
+                .unwrap();
+            let len = UnstretchedLength::Given(lp);
+            for j in 0..=nz {
+                for i in 0..=nx {
+                    if i < nx {
+                        let g = if j == 0 || j == nz { edge } else { inner };
+                        b.add_cable(id(i, j), id(i + 1, j), g, len).unwrap();
+                    }
+                    if j < nz {
+                        let g = if i == 0 || i == nx { edge } else { inner };
+                        b.add_cable(id(i, j), id(i, j + 1), g, len).unwrap();
+                    }
+                }
+            }
+        }
+        b.fix(id(0, 0), Dofs::ALL).unwrap();
+        b.fix(id(nx, 0), Dofs::ALL).unwrap();
+        for j in 0..=nz {
+            for i in 0..=nx {
+                let side = if j == nz && i == nx { 0.3 } else { 0.0 };
+                b.add_point_body(PointBody {
+                    node: id(i, j),
+                    mass: 0.0,
+                    force: [side, 0.05 * side, -0.1],
+                    seabed_stiffness: 0.0,
+                })
+                .unwrap();
+            }
+        }
+        let m = b.build().unwrap();
+        let st = StaticSettings {
+            tol: 1e-11,
+            ..Default::default()
+        };
+        let sol = solve_static(&m, &mut NoLoads, &st).unwrap();
+        let slack = (0..m.net_triangles().len())
+            .map(|i| m.net_triangle_twines(i, &sol.state.x))
+            .filter(|t| t.tension_u == 0.0 || t.tension_v == 0.0)
+            .count();
+        (sol.state.x, sol.report.iterations, slack)
+    };
+    let (xt, it_t, slack) = solve(true);
+    let (xc, it_c, _) = solve(false);
+    let d = xt
+        .iter()
+        .zip(&xc)
+        .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1], a[2] - b[2]]))
+        .fold(0.0, f64::max);
+    let sag = -xt[id(nx / 2, nz)][2] - nz as f64 * lp;
+    eprintln!(
+        "triangles vs bars: {d:.3e} m apart; {it_t} vs {it_c} iterations; {slack} triangles with a slack family; bottom stretched/sagged by {sag:.3e} m"
+    );
+    assert!(
+        slack > 0,
+        "no slack twines: the test would not exercise the slack law"
+    );
+    assert!(d < 1e-9, "triangles and bars differ by {d} m");
+}
+
+/// With the consistent mass (m/12·[2 1 1; 1 2 1; 1 1 2] per triangle and component) the
+/// midpoint rule keeps the swinging net's energy too, its kinetic energy ½·vᵀ·M·v formed here
+/// triangle by triangle.
+#[test]
+fn midpoint_keeps_the_energy_with_the_consistent_mass() {
+    let (m, init) = swinging_net();
+    let g = m.environment().gravity;
+    let energy = |s: &State| {
+        let mut e = 0.0;
+        for t in m.net_triangles() {
+            let mt = t.mass();
+            let [p, q, r] = t.nodes;
+            for k in 0..3 {
+                let (a, b, c) = (s.v[p][k], s.v[q][k], s.v[r][k]);
+                e += 0.5 * mt / 12.0
+                    * (2.0 * (a * a + b * b + c * c) + 2.0 * (a * b + b * c + a * c));
+            }
+            let zc = (s.x[p][2] + s.x[q][2] + s.x[r][2]) / 3.0;
+            e += mt * g * zc + t.strain_energy(&s.x);
+        }
+        e
+    };
+    let e0 = energy(&init);
+    let mut s = DynamicSettings::new(2e-3, 4.0);
+    s.midpoint = true;
+    s.tol = 1e-9;
+    s.mass_matrix = MassMatrix::Consistent;
+    let mut solver = DynamicSolver::new(&m, s, Some(&init), &mut NoLoads).unwrap();
+    let (mut worst, mut scale) = (0.0f64, 0.0f64);
+    while !solver.is_finished() {
+        let r = solver.step(&mut NoLoads).unwrap();
+        worst = worst.max((energy(solver.state()) - e0).abs());
+        scale = scale.max(r.energies.kinetic);
+    }
+    eprintln!("consistent mass: |E − E0| ≤ {worst:.3e} J of {scale:.3e} J");
+    assert!(scale > 0.005, "no swing: {scale} J");
+    assert!(worst <= 1e-6 * scale, "energy error {worst} J of {scale} J");
+}

@@ -182,6 +182,14 @@ impl DynamicSolver<'_> {
                 ));
             }
         }
+        for (i, t) in model.net_triangles().iter().enumerate() {
+            if let Some(family) = t.turned_over(&self.state.x, &self.x1) {
+                return Some(format!(
+                    "net triangle {i}: its {family} twines turned over in one step (their \
+                     direction reversed while they carried load)"
+                ));
+            }
+        }
         let mut trial = std::mem::take(&mut self.trial);
         trial.update(model, &self.sys, true);
         let mut mv = std::mem::take(&mut self.mv);

@@ -6,8 +6,8 @@ use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::seabed::BedLaw;
 
-/// The connected parts of the structure (joined by cable, net triangle and load elements): the lowest
-/// node index of each node's part.
+/// The connected parts of the structure (joined by cable, net triangle and load elements):
+/// the lowest node index of each node's part.
 pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
     let n = model.n_nodes();
     let mut parent: Vec<usize> = (0..n).collect();
