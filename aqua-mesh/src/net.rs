@@ -244,6 +244,25 @@ impl NetParams {
                 s
             }
         };
+        if self.element == Some(NetElement::Triangle) {
+            for (key, given) in [
+                ("solidity", self.solidity.is_some()),
+                ("grouping_ratio", self.grouping_ratio.is_some()),
+            ] {
+                if given {
+                    notices.push(format!(
+                        "warning: {object}: net.{key} is not used by net.element = \"triangle\": \
+                         the triangles hold the physical twines, and their solidity follows \
+                         twine_diameter, half_mesh and the twines' stretch"
+                    ));
+                }
+            }
+        } else if self.orientation.is_some() || self.twine_direction.is_some() {
+            notices.push(format!(
+                "warning: {object}: net.orientation and net.twine_direction are used only by \
+                 net.element = \"triangle\"; the cable net's twines follow the mesh lines"
+            ));
+        }
         if let Some(g) = self.grouping_ratio
             && !(g.is_finite() && g >= 1.0)
         {

@@ -129,7 +129,8 @@ fn drop_lines(b: &mut MeshBuilder, g: usize) {
     }
 }
 
-/// Splits the quads of panel group `g` into two triangles along the shorter diagonal.
+/// Splits the quads of panel group `g` into two triangles along the shorter diagonal
+/// (alternating where the diagonals are equal).
 fn split_quads(b: &mut MeshBuilder, g: usize) {
     let quads: Vec<usize> = b.mesh.groups[g]
         .panels
@@ -142,7 +143,14 @@ fn split_quads(b: &mut MeshBuilder, g: usize) {
             continue;
         };
         let d = |i: usize, j: usize| (b.mesh.nodes[q[i]] - b.mesh.nodes[q[j]]).norm();
-        let (first, second) = if d(0, 2) <= d(1, 3) {
+        // Equal diagonals (a regular grid): alternate, so the triangulation has no hand.
+        let (d02, d13) = (d(0, 2), d(1, 3));
+        let along_02 = if (d02 - d13).abs() <= 1e-9 * d02.max(d13) {
+            p % 2 == 0
+        } else {
+            d02 < d13
+        };
+        let (first, second) = if along_02 {
             ([q[0], q[1], q[2]], [q[0], q[2], q[3]])
         } else {
             ([q[0], q[1], q[3]], [q[1], q[2], q[3]])

@@ -45,7 +45,8 @@ pub struct Built {
     pub panel_loaded: Vec<bool>,
     /// Per panel and line load element (assembly order): its mesh cell.
     pub load_cells: Vec<LoadCell>,
-    /// Names of the structural groups (index = fem group id).
+    /// Names of the structural groups: the cable groups (index = fem group id), then the net
+    /// triangle groups (index − cable groups = net triangle group id).
     pub group_names: Vec<String>,
     /// Nodes with fixed or prescribed DOFs.
     pub supported_nodes: Vec<usize>,

@@ -34,7 +34,8 @@ pub(super) struct Structure {
     pub builder: ModelBuilder,
     /// Per mesh group: the fem group id and the section with overrides applied.
     pub sections: Vec<Option<(GroupId, Section)>>,
-    /// Names of the structural groups (index = fem group id).
+    /// Names of the structural groups: the cable groups (index = fem group id), then the net
+    /// triangle groups.
     pub group_names: Vec<String>,
     /// Point bodies that carry water loads (volume or drag).
     pub hydro_points: Vec<PointElement>,
@@ -85,9 +86,9 @@ pub(super) fn build_structure(
         b.add_node([p.x, p.y, p.z])
             .map_err(|e| SimError::at(format!("{file}: node"), e))?;
     }
-    let (sections, group_names) = cable_groups(scene, mesh, &mut b)?;
+    let (sections, mut group_names) = cable_groups(scene, mesh, &mut b)?;
     add_cables(&file, mesh, &sections, &mut b)?;
-    let panel_triangle = add_net_triangles(&file, mesh, &mut b)?;
+    let panel_triangle = add_net_triangles(&file, mesh, &mut b, &mut group_names)?;
     // Sinkers and weights of the builders hang as point masses W/g
     // (docs/theory/cages.md#frame-ropes-and-weights).
     for w in &mesh.weights {
@@ -120,12 +121,14 @@ pub(super) fn build_structure(
 
 /// The net triangles of every net with `net.element = "triangle"`, one group per object
 /// ("object/net_triangles") with the section of one physical twine: EA = E·πd²/4,
-/// μ = ρ·πd²/4, bar length l_p, tension-only (docs/theory/fem.md#net-triangle). Returns per
-/// mesh panel its triangle index.
+/// μ = ρ·πd²/4, bar length l_p, tension-only (docs/theory/fem.md#net-triangle), its name
+/// appended to `group_names` (after the cable groups). Returns per mesh panel its triangle
+/// index.
 fn add_net_triangles(
     file: &str,
     mesh: &Mesh,
     b: &mut ModelBuilder,
+    group_names: &mut Vec<String>,
 ) -> Result<Vec<Option<usize>>> {
     let mut group: HashMap<u32, NetGroupId> = HashMap::new();
     let mut out = vec![None; mesh.panels.len()];
@@ -150,6 +153,7 @@ fn add_net_triangles(
                     .add_net_triangle_group(&name, section)
                     .map_err(|e| SimError::at(format!("{file}: {name}"), e))?;
                 group.insert(p.object, id);
+                group_names.push(name);
                 id
             }
         };
