@@ -1,4 +1,4 @@
-//! Every file in `examples/` does what the README's example table says it is for: scenes run
+//! Every file in `examples/` does what the example table of docs/guide/examples.md says it is for: scenes run
 //! (dynamics shortened to 1 s), case files list their cases, sea-only files preview with
 //! `aqua waves` and are refused by `aqua run` with a clear message. The list is read from the
 //! folder, so a new example cannot be forgotten here.
@@ -21,7 +21,7 @@ fn aqua(args: &[&str]) -> (i32, String, String) {
 #[test]
 fn every_example_runs_as_documented() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
-    let readme = std::fs::read_to_string(dir.join("../README.md")).unwrap();
+    let guide = std::fs::read_to_string(dir.join("../docs/guide/examples.md")).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .flatten()
@@ -34,8 +34,8 @@ fn every_example_runs_as_documented() {
     for f in &files {
         let name = f.file_name().unwrap().to_string_lossy().into_owned();
         assert!(
-            readme.contains(&format!("| `{name}` |")),
-            "{name} has no line in the README's example table"
+            guide.contains(&format!("| `{name}` |")),
+            "{name} has no line in the example table of docs/guide/examples.md"
         );
         let text = std::fs::read_to_string(f).unwrap();
         let table: toml::Table = toml::from_str(&text).unwrap();

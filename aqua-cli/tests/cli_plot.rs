@@ -80,8 +80,10 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
     let mut checked = 0;
     let mut peaks = 0;
     for p in &pictures {
+        // Every title names the scene (run.json's scene.name).
+        assert!(p.title.starts_with("mooring-chain: "), "{}", p.title);
         for s in &p.series {
-            if p.title.starts_with("Static solver") {
+            if p.path.ends_with("static_convergence.png") {
                 continue;
             }
             let v = column(&csv, &s.name);
@@ -117,7 +119,7 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
     let history = run["static_residual_history"].as_array().unwrap();
     let conv = pictures
         .iter()
-        .find(|p| p.title.starts_with("Static solver"))
+        .find(|p| p.path.ends_with("static_convergence.png"))
         .unwrap();
     assert_eq!(conv.series[0].points.len(), history.len());
     let last = history.last().unwrap().as_f64().unwrap();

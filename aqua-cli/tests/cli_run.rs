@@ -1005,10 +1005,10 @@ fn vtm_cells(vtm: &Path) -> Vec<(String, u64)> {
 }
 
 #[test]
-fn readme_block_selectors_work_for_a_farm_in_real_paraview() {
-    // The README's selectors, literally.
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let selectors: Vec<&str> = readme
+fn guide_block_selectors_work_for_a_farm_in_real_paraview() {
+    // The selectors of the ParaView guide, literally.
+    let guide = std::fs::read_to_string(root().join("docs/guide/paraview.md")).unwrap();
+    let selectors: Vec<&str> = guide
         .split('`')
         .skip(1)
         .step_by(2)
@@ -1021,7 +1021,7 @@ fn readme_block_selectors_work_for_a_farm_in_real_paraview() {
     ] {
         assert!(
             selectors.contains(&want),
-            "README lacks {want}: {selectors:?}"
+            "docs/guide/paraview.md lacks {want}: {selectors:?}"
         );
     }
     let dir = scratch("paraview-farm");

@@ -1,4 +1,4 @@
-//! The `[sea]` table of a scene (top-level README.md#scene-sea-table): serde types with the binding
+//! The `[sea]` table of a scene (docs/guide/scene.md#sea): serde types with the binding
 //! key names, validation with messages that name key, value and valid range, and construction of a
 //! [`Sea`] with its printed summary and warnings.
 

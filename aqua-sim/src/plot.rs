@@ -114,6 +114,11 @@ fn range(lo: f64, hi: f64) -> (f64, f64) {
     (lo - 0.05 * span, hi + 0.05 * span)
 }
 
+/// The title's font size: smaller for a long title (a long scene name), so it fits the width.
+fn caption_size(title: &str) -> u32 {
+    if title.chars().count() > 64 { 20 } else { 26 }
+}
+
 /// Most curves in one time-series picture (the legend must fit above them); a group with more
 /// shows those with the largest peaks.
 const MAX_CURVES: usize = 8;
@@ -152,7 +157,7 @@ pub fn line_chart(
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 26))
+            .caption(title, ("sans-serif", caption_size(title)))
             .margin(20)
             .x_label_area_size(55)
             .y_label_area_size(110)
@@ -238,7 +243,7 @@ pub fn loglog_chart(
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 26))
+            .caption(title, ("sans-serif", caption_size(title)))
             .margin(20)
             .x_label_area_size(55)
             .y_label_area_size(110)
@@ -405,12 +410,15 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
         path: out.clone(),
         source,
     })?;
+    let scene = scene_name(dir);
     let mut pictures = Vec::new();
     if table.rows.len() > 1 {
         let groups: [TimePicture; 4] = [
             (
                 "forces.png",
-                "Net drag and support reactions",
+                // Fx_net … is the whole water load on the nets (post::net_force): drag, lift
+                // and, in Fz_net, the twines' buoyancy.
+                "Water load on the nets (drag, lift, twine buoyancy), support reactions",
                 "force [N]",
                 |c| c.ends_with("_net") || matches!(c, "Rx" | "Ry" | "Rz"),
             ),
@@ -460,9 +468,9 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
                 let n = series.len();
                 series.sort_by(|a, b| b.max.total_cmp(&a.max));
                 series.truncate(MAX_CURVES);
-                format!("{title}: the {MAX_CURVES} largest of {n}")
+                format!("{scene}: {title}: the {MAX_CURVES} largest of {n}")
             } else {
-                title.to_string()
+                format!("{scene}: {title}")
             };
             pictures.push(line_chart(
                 &out.join(file),
@@ -486,7 +494,7 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
         if s.points.len() > 1 {
             pictures.push(log_y_chart(
                 &out.join("static_convergence.png"),
-                "Static solver: relative residual per Newton iteration",
+                &format!("{scene}: static solver, relative residual per Newton iteration"),
                 "iteration",
                 "relative residual [-]",
                 s,
@@ -494,6 +502,20 @@ pub fn plot_run(dir: &Path) -> Result<Vec<Picture>> {
         }
     }
     Ok(pictures)
+}
+
+/// The scene's name (`run.json`'s `scene.name`), else the folder's name: every picture's title
+/// starts with it.
+fn scene_name(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("run.json"))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .and_then(|v| v["scene"]["name"].as_str().map(str::to_string))
+        .unwrap_or_else(|| {
+            let abs = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+            abs.file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+        })
 }
 
 fn static_history(path: &Path) -> Option<Vec<f64>> {
@@ -522,7 +544,7 @@ fn log_y_chart(
         let root = BitMapBackend::new(path, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 26))
+            .caption(title, ("sans-serif", caption_size(title)))
             .margin(20)
             .x_label_area_size(55)
             .y_label_area_size(110)
@@ -669,13 +691,14 @@ mod tests {
             text += &(row.join(",") + "\n");
         }
         std::fs::write(dir.join("summary.csv"), text).unwrap();
+        std::fs::write(dir.join("run.json"), r#"{"scene": {"name": "many-lines"}}"#).unwrap();
         let pictures = plot_run(&dir).unwrap();
         let ends = pictures
             .iter()
             .find(|p| p.path.ends_with("line_ends.png"))
             .unwrap();
         assert!(
-            ends.title.ends_with("the 8 largest of 24"),
+            ends.title.starts_with("many-lines: ") && ends.title.ends_with("the 8 largest of 24"),
             "{}",
             ends.title
         );

@@ -2,12 +2,12 @@
 //! key and what would be valid.
 //!
 //! Every key is listed in docs/guide/scene.md (checked by `tests/guide.rs` against
-//! [`scene_keys`]). Layout (key names as in the top-level `README.md`; `x.md#anchor` is a section of
-//! `docs/theory/x.md`, `README.md#anchor` one of the top-level README):
+//! [`scene_keys`]). Layout (`x.md#anchor` is a section of `docs/theory/x.md`, `scene.md#anchor`
+//! one of docs/guide/scene.md):
 //!
 //! ```toml
 //! name = "reference-cage" # optional; default: the file stem
-//! [sea]                   # aqua-env (README.md#scene-sea-table), plus [sea.seabed] kbot, cbot, friction
+//! [sea]                   # aqua-env (scene.md#sea), plus [sea.seabed] kbot, cbot, friction
 //! [[cage]]                # aqua-mesh CageParams (cages.md#cage-parameters) + net.* hydro keys
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
@@ -20,7 +20,7 @@
 //! [[buoy]]                # buoys and coupling plates (crate::buoy, farm.md#buoys)
 //! [[fix]]                 # extra fixed DOFs (fem.md#boundary-conditions)
 //! [[prescribed]]          # prescribed motions (fem.md#boundary-conditions)
-//! [analysis]              # static / dynamic settings (README.md#scene-files)
+//! [analysis]              # static / dynamic settings (scene.md#analysis)
 //! ```
 
 use crate::buoy::BuoySpec;

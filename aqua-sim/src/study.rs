@@ -1,7 +1,7 @@
 //! The accuracy–speed study (`aqua study`): one scene run over ladders of numerical settings
 //! (element length, time step, scheme, …), the converged value of each metric estimated from
 //! the ladders, every run's error against it and its cost, and the cheapest setting whose
-//! errors are all within a tolerance (README.md#choosing-resolution-aqua-study).
+//! errors are all within a tolerance (docs/guide/study-and-sweep.md#choosing-resolution-aqua-study).
 //!
 //! **Settings.** Each `--vary PATH=v1,v2,…` is a ladder, listed from coarse to fine; the runs
 //! are the full factorial product of the ladders (the last ladder varies fastest) and the last

@@ -1,7 +1,7 @@
 //! Load-case sweeps (`aqua sweep cases.toml`) and collecting many run folders into one table
 //! (`aqua collect DIR`).
 //!
-//! A case file names a base scene and a case matrix (README.md#design-load-cases):
+//! A case file names a base scene and a case matrix (docs/guide/study-and-sweep.md#design-load-cases-aqua-sweep-and-aqua-collect):
 //!
 //! ```toml
 //! scene = "reference-cage.toml"        # the base scene, relative to this file

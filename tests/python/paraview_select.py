@@ -4,7 +4,7 @@ Usage (ParaView's Python):
   pvbatch paraview_select.py FILE.vtm OUT.json SELECTOR...
 
 Writes {"hierarchy": [the names ParaView gives the blocks], "cells": {selector: cells}} to
-OUT.json. Used by aqua-cli/tests/cli_run.rs to check that the selectors the README documents
+OUT.json. Used by aqua-cli/tests/cli_run.rs to check that the selectors docs/guide/paraview.md documents
 select what they say in real ParaView (which drops characters other than ASCII letters, digits
 and `_` from block names).
 """

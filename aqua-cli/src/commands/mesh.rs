@@ -337,16 +337,17 @@ pub fn report_with(
     }
     for o in &summary.objects {
         println!(
-            "{} ({}, {} cop{})",
+            "{} ({}{}; {} cop{})",
             o.name,
             o.kind,
+            kind_words(&o.kind).map_or(String::new(), |w| format!(": {w}")),
             o.copies,
             if o.copies == 1 { "y" } else { "ies" }
         );
         if let Some(c) = &o.counts {
             println!(
-                "  NT = {}, NN = {}, BN = {}, extension segments = {}, ropes = {}; R_top = {:.4} \
-                 m, R_bottom = {:.4} m",
+                "  NT = {} nodes around, NN = {} side segments, BN = {} cone segments, extension \
+                 segments = {}, ropes = {}; R_top = {:.4} m (top radius), R_bottom = {:.4} m",
                 c.nt, c.nn, c.bn, c.n_ext, c.ropes, c.top_radius, c.bottom_radius
             );
             println!(
@@ -356,12 +357,14 @@ pub fn report_with(
         }
         if let Some(n) = &o.net {
             println!(
-                "  net: dw0 = {} m, l_p = {} m, Sn = {:.4}, mean twine element {:.5} m, area {:.2} \
-                 m²",
+                "  net: dw0 = {} m twine diameter, l_p = {} m half mesh (knot to knot), Sn = {:.4} \
+                 solidity, mean twine element {:.5} m, area {:.2} m²",
                 n.twine_diameter, n.half_mesh, n.solidity, n.mean_twine_length, n.net_area
             );
             println!(
-                "  λ = {:.2}{} (elements {:.2} to {:.2}), dws = {:.5} m, dwe = {:.5} m, dwh = {:.4} m",
+                "  λ = {:.2}{} physical twines per numerical twine (elements {:.2} to {:.2}); twine \
+                 diameters of the model: dws = {:.5} m structural (mass, buoyancy), dwe = {:.5} m \
+                 elastic (stiffness), dwh = {:.4} m hydrodynamic (drag)",
                 n.lambda,
                 if n.lambda_given { " (given)" } else { "" },
                 n.lambda_range[0],
@@ -408,6 +411,9 @@ pub fn report_with(
                 f(g.elastic_diameter),
                 f(g.hydro_diameter)
             );
+        }
+        if o.groups.iter().any(|g| g.diameter.is_some()) {
+            println!("  d: diameter of mass and buoyancy, d_e: elastic, d_h: hydrodynamic");
         }
     }
     println!(
@@ -559,4 +565,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             report(&mesh, out, args.json)
         }
     }
+}
+
+/// Plain words for a cage type (docs/theory/cages.md#cage-types), `None` for other objects.
+fn kind_words(kind: &str) -> Option<&'static str> {
+    Some(match kind {
+        "CCT" => "circular cage, conical wall, sinker tube",
+        "CCS" => "circular cage, conical wall, central sinker",
+        "CSM" => "circular cage, straight wall, sinker masses",
+        "SSM" => "square cage, straight wall, sinker masses",
+        _ => return None,
+    })
 }
