@@ -8,7 +8,8 @@
 //!
 //!   Sn = (d·|u| + d·|v| − d²) / |u × v|,
 //!
-//! 2d/l_p − (d/l_p)² for square meshes open at 90°, growing as the meshes close.
+//! 2d/l_p − (d/l_p)² for square meshes open at 90°, growing as the meshes close. The load's
+//! position Jacobian carries ∂Sn/∂x through [`TwineMap::solidity_gradient`].
 
 use crate::panel::V3;
 
@@ -57,6 +58,27 @@ impl TwineMap {
     pub fn solidity(&self, p: &[V3; 3], d: f64) -> f64 {
         let (u, v) = self.twines(p);
         solidity(&u, &v, d)
+    }
+
+    /// Solidity (as [`Self::solidity`]) and its gradients ∂Sn/∂x_k [1/m] with respect to the
+    /// corner positions (zero where the cap holds):
+    /// ∂Sn/∂x_k = [d·(a_k·û + b_k·v̂) − Sn·(a_k·(v × ŵ) + b_k·(ŵ × u))]/|w|, w = u × v.
+    pub fn solidity_gradient(&self, p: &[V3; 3], d: f64) -> (f64, [V3; 3]) {
+        let (u, v) = self.twines(p);
+        let sn = solidity(&u, &v, d);
+        let w = u.cross(&v);
+        let wn = w.norm();
+        let (un, vn) = (u.norm(), v.norm());
+        if sn >= MAX_TRIANGLE_SOLIDITY || sn <= 0.0 || wn <= 0.0 || un <= 0.0 || vn <= 0.0 {
+            return (sn, [V3::zeros(); 3]);
+        }
+        let (uh, vh, wh) = (u / un, v / vn, w / wn);
+        let (dw_du, dw_dv) = (v.cross(&wh), wh.cross(&u));
+        let grad = std::array::from_fn(|k| {
+            (d * (self.a[k] * uh + self.b[k] * vh) - sn * (self.a[k] * dw_du + self.b[k] * dw_dv))
+                / wn
+        });
+        (sn, grad)
     }
 
     /// The opening angle between the U and V twines [rad], in [0, π].
@@ -108,5 +130,31 @@ mod tests {
         let flat = uv.map(|c| du * (c[0] + c[1]));
         assert_eq!(t.solidity(&flat, d), MAX_TRIANGLE_SOLIDITY);
         assert!(TwineMap::new([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]).is_none());
+    }
+
+    #[test]
+    fn solidity_gradient_is_the_derivative() {
+        let (d, lp) = (2e-3, 20e-3);
+        let t = TwineMap::new([[0.0, 0.0], [3.0, 0.5], [0.4, 2.0]]).unwrap();
+        let p = [
+            V3::new(0.0, 0.01, -0.02),
+            V3::new(0.05, 0.0, 0.03) * lp / 0.02,
+            V3::new(0.01, 0.04, 0.0) * lp / 0.02,
+        ];
+        let (_, g) = t.solidity_gradient(&p, d);
+        let h = 1e-7;
+        for k in 0..3 {
+            for c in 0..3 {
+                let (mut pp, mut pm) = (p, p);
+                pp[k][c] += h;
+                pm[k][c] -= h;
+                let fd = (t.solidity(&pp, d) - t.solidity(&pm, d)) / (2.0 * h);
+                assert!(
+                    (g[k][c] - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+                    "{k} {c}: {} vs {fd}",
+                    g[k][c]
+                );
+            }
+        }
     }
 }

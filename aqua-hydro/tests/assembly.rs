@@ -8,7 +8,7 @@ use aqua_hydro::assembly::{MAX_DOFS, MAX_NODES};
 use aqua_hydro::{
     Block, ElementOutput, Elements, HydroError, LineElement, LineProps, LoadAssembly, MorisonModel,
     NetPanel, NetProps, Outputs, PanelNodes, PointElement, PointProps, PointShape, ScreenModel,
-    Wake, WakeCell, WakeGroup, WakeModel, WakeUpdate, Want,
+    TwineMap, Wake, WakeCell, WakeGroup, WakeModel, WakeUpdate, Want,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -360,6 +360,13 @@ fn mixed() -> (Vec<[f64; 3]>, Elements) {
                 net: net(ScreenModel::Bi2014, 0.2),
                 wake_group: None,
                 twines: None,
+            },
+            // A net triangle (twines of ~2–4 cm, Sn ≈ 0.2 and changing with the positions).
+            NetPanel {
+                nodes: PanelNodes::Triangle([2, 3, 4]),
+                net: net(ScreenModel::S1, 0.2),
+                wake_group: None,
+                twines: TwineMap::new([[0.0, 0.0], [50.0, 5.0], [10.0, 60.0]]),
             },
         ],
         lines: vec![

@@ -14,10 +14,8 @@ pub fn panel_arrays(built: &Built, x: &[[f64; 3]]) -> Vec<BlockArray> {
         return Vec::new();
     }
     let n = built.mesh.panels.len();
-    let (mut tu, mut tv, mut sn, mut angle) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![
-        0.0;
-        n
-    ]);
+    let (mut tu, mut tv, mut sn, mut angle) =
+        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     for (p, tri) in built.panel_triangle.iter().enumerate() {
         let Some(i) = *tri else { continue };
         let t = built.model.net_triangle_twines(i, x);

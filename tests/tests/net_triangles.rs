@@ -4,8 +4,8 @@
 //! different triangulations gives the same drag.
 
 mod common;
-use aqua_fem::StaticControl;
 use aqua_env::Phase;
+use aqua_fem::StaticControl;
 use aqua_sim::build::Prescribed;
 use common::*;
 use std::fmt::Write as _;
@@ -57,11 +57,7 @@ fn triangles_and_cables_agree_on_a_hanging_panel_and_converge_together() {
     for h in [0.5, 0.25, 0.125] {
         let mut row = Vec::new();
         for element in ["cable", "triangle"] {
-            let (x, it, f) = solve(
-                &dir,
-                &format!("{element}-{h}"),
-                &panel_scene(element, h),
-            );
+            let (x, it, f) = solve(&dir, &format!("{element}-{h}"), &panel_scene(element, h));
             let n = (2.0 / h) as usize;
             row.push((f[0], bottom_x(&x, n), it));
         }
@@ -70,7 +66,10 @@ fn triangles_and_cables_agree_on_a_hanging_panel_and_converge_together() {
         // The drag streams the panel back: both models see it, and agree within 1 %.
         assert!(fc > 1.0 && xc > 0.05, "h {h}: drag {fc} N, bottom x {xc} m");
         assert!((ft / fc - 1.0).abs() < 0.01, "h {h}: drag {ft} vs {fc} N");
-        assert!((xt / xc - 1.0).abs() < 0.01, "h {h}: bottom x {xt} vs {xc} m");
+        assert!(
+            (xt / xc - 1.0).abs() < 0.01,
+            "h {h}: bottom x {xt} vs {xc} m"
+        );
         rows.push(row);
     }
     // Refinement: each model's drag is settled (changes below 0.5 %), its shape converges (the
@@ -79,12 +78,22 @@ fn triangles_and_cables_agree_on_a_hanging_panel_and_converge_together() {
     for m in 0..2 {
         let f = |k: usize| rows[k][m].0;
         let x = |k: usize| rows[k][m].1;
-        assert!((f(2) / f(1) - 1.0).abs() < 0.005, "model {m}: drag {} then {}", f(1), f(2));
+        assert!(
+            (f(2) / f(1) - 1.0).abs() < 0.005,
+            "model {m}: drag {} then {}",
+            f(1),
+            f(2)
+        );
         let (d1, d2) = ((x(1) - x(0)).abs(), (x(2) - x(1)).abs());
         assert!(d2 < 0.75 * d1, "model {m}: shape changes {d1} then {d2} m");
     }
     let gap = |k: usize| (rows[k][1].1 / rows[k][0].1 - 1.0).abs();
-    assert!(gap(2) < gap(0), "shape gap {} at h 0.5, {} at h 0.125", gap(0), gap(2));
+    assert!(
+        gap(2) < gap(0),
+        "shape gap {} at h 0.5, {} at h 0.125",
+        gap(0),
+        gap(2)
+    );
 }
 
 /// A MSH 2.2 file of a 2 m × 2 m net in the plane x = 0, top edge at z = −0.2 (group `fixed`),
@@ -104,7 +113,11 @@ fn net_msh(dir: &Path, name: &str, n: usize, centred: bool) {
         for i in 0..n {
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
             if centred {
-                nodes.push([0.0, -1.0 + (i as f64 + 0.5) * h, -0.2 - (j as f64 + 0.5) * h]);
+                nodes.push([
+                    0.0,
+                    -1.0 + (i as f64 + 0.5) * h,
+                    -0.2 - (j as f64 + 0.5) * h,
+                ]);
                 let m = nodes.len();
                 tris.extend([[a, b, m], [b, c, m], [c, d, m], [d, a, m]]);
             } else if (i + j) % 2 == 0 {
@@ -166,7 +179,12 @@ fn two_triangulations_of_a_gmsh_net_give_the_same_drag() {
     assert!((drag[1].1 / drag[0].1 - 1.0).abs() < 0.02, "{drag:?}");
     // And the panel builder's net of the same size and resolution (cables) agrees.
     let (_, _, fc) = solve(&dir, "cable", &panel_scene("cable", 0.25));
-    assert!((drag[0].0 / fc[0] - 1.0).abs() < 0.02, "{} vs {}", drag[0].0, fc[0]);
+    assert!(
+        (drag[0].0 / fc[0] - 1.0).abs() < 0.02,
+        "{} vs {}",
+        drag[0].0,
+        fc[0]
+    );
 }
 
 #[test]
@@ -184,6 +202,9 @@ fn net_triangle_keys_are_checked() {
     assert!(e.contains("net.drag") && e.contains("triangle"), "{e}");
     let text = panel_scene("hexagon", 0.5);
     std::fs::write(dir.join("h.toml"), &text).unwrap();
-    let e = format!("{:#}", aqua_sim::read_scene(&dir.join("h.toml")).unwrap_err());
+    let e = format!(
+        "{:#}",
+        aqua_sim::read_scene(&dir.join("h.toml")).unwrap_err()
+    );
     assert!(e.contains("element") && e.contains("triangle"), "{e}");
 }

@@ -870,16 +870,51 @@ impl LoadAssembly {
                     };
                     let p = [pn[nodes[0]], pn[nodes[1]], pn[nodes[2]]];
                     let zeta = [zn[nodes[0]], zn[nodes[1]], zn[nodes[2]]];
-                    // A net triangle's solidity follows its twines; its Jacobian holds it
-                    // fixed (docs/theory/hydrodynamics.md#net-triangle-screen).
-                    let net = match &panel.twines {
-                        Some(map) => NetProps {
-                            solidity: map.solidity(&p, panel.net.twine_diameter),
-                            ..panel.net
-                        },
-                        None => panel.net,
+                    // A net triangle's solidity follows its twines, and the position
+                    // Jacobian with it (docs/theory/hydrodynamics.md#net-triangle-screen).
+                    let (net, dsn) = match &panel.twines {
+                        Some(map) => {
+                            let (sn, grad) = if want.dfdx {
+                                map.solidity_gradient(&p, panel.net.twine_diameter)
+                            } else {
+                                (map.solidity(&p, panel.net.twine_diameter), [V3::zeros(); 3])
+                            };
+                            let net = NetProps {
+                                solidity: sn,
+                                ..panel.net
+                            };
+                            (net, want.dfdx.then_some(grad))
+                        }
+                        None => (panel.net, None),
                     };
-                    let t = panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
+                    let mut t = panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
+                    if let Some(grad) = dsn
+                        && grad.iter().any(|g| g.norm_squared() > 0.0)
+                    {
+                        // ∂F/∂Sn by a central difference of the screen model (any model).
+                        let h = 1e-6 * net.solidity;
+                        let at = |sn: f64| {
+                            let props = NetProps {
+                                solidity: sn,
+                                ..net
+                            };
+                            panel::triangle(
+                                &props,
+                                p,
+                                zeta,
+                                w,
+                                weight,
+                                self.rho,
+                                self.nu,
+                                Want::default(),
+                            )
+                            .force
+                        };
+                        let dfds = (at(net.solidity + h) - at(net.solidity - h)) / (2.0 * h);
+                        for q in 0..3 {
+                            t.dfdp[q] += dfds * grad[q].transpose();
+                        }
+                    }
                     if t.reynolds > 0.0 {
                         re_lo = re_lo.min(t.reynolds);
                         re_hi = re_hi.max(t.reynolds);
