@@ -129,8 +129,7 @@ fn drop_lines(b: &mut MeshBuilder, g: usize) {
     }
 }
 
-/// Splits the quads of panel group `g` into two triangles along the shorter diagonal
-/// (alternating where the diagonals are equal).
+/// Splits the quads of panel group `g` into two triangles along the shorter diagonal.
 fn split_quads(b: &mut MeshBuilder, g: usize) {
     let quads: Vec<usize> = b.mesh.groups[g]
         .panels
@@ -143,14 +142,12 @@ fn split_quads(b: &mut MeshBuilder, g: usize) {
             continue;
         };
         let d = |i: usize, j: usize| (b.mesh.nodes[q[i]] - b.mesh.nodes[q[j]]).norm();
-        // Equal diagonals (a regular grid): alternate, so the triangulation has no hand.
-        let (d02, d13) = (d(0, 2), d(1, 3));
-        let along_02 = if (d02 - d13).abs() <= 1e-9 * d02.max(d13) {
-            p % 2 == 0
-        } else {
-            d02 < d13
-        };
-        let (first, second) = if along_02 {
+        // Equal diagonals (a regular grid) are cut the same way everywhere, so every interior
+        // node of the grid gets the same share of load and mass (alternating cuts give nodes
+        // of 4 and 8 triangles and a chequered load: a hanging panel's bottom moved 4 % off
+        // the cable net's). The cost is a slight hand: the reference cage's Fy_net is 0.17 %
+        // of its drag.
+        let (first, second) = if d(0, 2) <= d(1, 3) * (1.0 + 1e-9) {
             ([q[0], q[1], q[2]], [q[0], q[2], q[3]])
         } else {
             ([q[0], q[1], q[3]], [q[1], q[2], q[3]])
