@@ -28,6 +28,25 @@ pub enum FemError {
         /// Number of nodes in the model.
         n_nodes: usize,
     },
+    /// The mesh coordinates (U, V) of a net triangle's corners span no area: the triangle
+    /// holds no twines and its twine vectors are undefined (docs/theory/fem.md#net-triangle).
+    #[error(
+        "net triangle {triangle} (nodes {}-{}-{}): its mesh coordinates (U, V) = {uv:?} span \
+         an area of {area:.3e} mesh cells; the (U, V) corners must not lie on one line",
+        nodes[0],
+        nodes[1],
+        nodes[2]
+    )]
+    DegenerateNetTriangle {
+        /// Index the triangle would have had.
+        triangle: usize,
+        /// Its nodes.
+        nodes: [usize; 3],
+        /// The mesh coordinates given.
+        uv: [[f64; 2]; 3],
+        /// Their signed area in (U, V).
+        area: f64,
+    },
     /// Structurally bad model (duplicate constraint, unattached node, empty model, ...).
     #[error("invalid model: {0}")]
     InvalidModel(String),

@@ -245,6 +245,7 @@ impl<'m> ExplicitSolver<'m> {
         let mut k_bend = vec![0.0; n];
         self.sys.add_hinge_row_sums(model, &mut k_bend);
         self.sys.add_rod_row_sums(model, &mut k_bend);
+        self.sys.add_net_row_sums(model, &mut k_bend);
         let c_rows = self.sys.row_abs_sums();
         let bed = BedLaw::new(model, true);
         let mut dt = f64::INFINITY;
@@ -381,8 +382,8 @@ impl<'m> ExplicitSolver<'m> {
                 ek += 0.5 * v[k] * mv;
             }
         }
-        let u = self.outputs.strain_energy(model) + self.sys.bending_energy();
-        let mut power = 0.0;
+        let u = self.outputs.strain_energy(model) + self.sys.element_energy();
+        let mut power = self.sys.net_damping_power(model);
         for (e, c) in model.elements().iter().zip(&self.sys.cable) {
             power += c.damping_force * c.strain_rate * e.l0;
         }

@@ -19,6 +19,11 @@
 //!   from r_c to 1, f_int,a = −T·e, f_int,b = +T·e; tangent
 //!   k = (s·EA + d′·c_a·ε̇)/L0·eeᵀ + T/l·(I − eeᵀ) (+ the small non-symmetric damping term),
 //!   c = d·c_a/L0·eeᵀ.
+//! * Net triangle (Priour, docs/theory/fem.md#net-triangle; corners x_k with mesh coordinates
+//!   (U_k, V_k), shape gradients a_k, b_k, A_uv the (U, V) area): twine vectors
+//!   u = Σ a_k·x_k, v = Σ b_k·x_k, each family A_uv cables of rest length l_p from 0 to u (v):
+//!   E = A_uv·(W(|u|) + W(|v|)), f_int,k = A_uv·(a_k·T_u·û + b_k·T_v·v̂), exact 9×9 tangent;
+//!   mass 2·A_uv·l_p·μ, a third per corner.
 //! * Mass: lumped μL0/2 per node (default) or consistent μL0/6·[2I, I; I, 2I]; point masses and
 //!   the provider's added-mass 3×3 blocks add per node.
 //! * Bending hinge (nodes a, b, c; EI, as-built κ̄ and ℓ̄): t = ê₁·ê₂ of the edges
@@ -79,9 +84,9 @@
 //!
 //! ## Files
 //! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
-//! `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
+//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
 //! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
-//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`,
+//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`, `net_triangles.rs`,
 //! `load_derivatives.rs`, `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
 //! (`mod.rs` the solver, `settings.rs`, `support.rs` the checks before a solve);
 //! `dynamics/` (`settings.rs`, `step_control.rs`, `energy.rs`, `newton.rs`, and one file per
@@ -119,6 +124,7 @@ mod line_relaxation;
 pub mod loads;
 pub mod model;
 pub mod motion;
+mod net_triangle;
 mod rod;
 mod seabed;
 pub mod state;
@@ -141,6 +147,9 @@ pub use model::{
     RodSection, Seabed, Support, UnstretchedLength,
 };
 pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use net_triangle::{
+    NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
+};
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use state::{Outputs, State};
 pub use statics::{

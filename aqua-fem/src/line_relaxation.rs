@@ -2,8 +2,9 @@
 //! (docs/theory/fem.md#line-relaxation).
 //!
 //! A *line* is a maximal chain of interior nodes that each join exactly two cable elements,
-//! have all three DOFs free, carry no bending hinge and share load elements only with their
-//! line neighbours; its two *ends* are the nodes beyond (an anchor, a plate, a collar node).
+//! have all three DOFs free, carry no bending hinge and no net triangle, and share load
+//! elements only with their line neighbours; its two *ends* are the nodes beyond (an anchor,
+//! a plate, a collar node).
 //! After each global Newton update x^{k+1} = x^k + Δx, the interior of every line is moved so
 //! that, with its ends held at x^{k+1}, the model
 //!
@@ -143,6 +144,13 @@ impl LineRelaxation {
         }
         for h in model.hinges() {
             for &nd in &h.nodes {
+                eligible[nd] = false;
+            }
+        }
+        // A net triangle couples its corners to nodes off the chain and is not in the local
+        // model: its nodes are no line's interior (docs/theory/fem.md#net-triangle).
+        for t in model.net_triangles() {
+            for &nd in &t.nodes {
                 eligible[nd] = false;
             }
         }

@@ -4,6 +4,9 @@ use crate::bending::Hinge;
 use crate::error::{FemError, Result, invalid};
 use crate::friction::SeabedFriction;
 use crate::motion::{Motion, check_finite3};
+use crate::net_triangle::{
+    NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
+};
 use crate::rod::{self, EdgeFrame, RodEdge, RodVertex};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -301,6 +304,8 @@ pub struct ModelBuilder {
     motions: Vec<Motion>,
     hinges: Vec<Hinge>,
     rods: Rods,
+    net_triangles: Vec<NetTriangle>,
+    net_groups: Vec<NetTriangleGroup>,
 }
 
 impl ModelBuilder {
@@ -429,6 +434,78 @@ impl ModelBuilder {
             contact_diameter: s.contact_diameter.unwrap_or(0.0),
         });
         self.groups[group.0].elements.push(id);
+        Ok(id)
+    }
+
+    /// Adds a named group of net triangles with its section (one twine's EA and μ, the bar
+    /// length l_p, docs/theory/fem.md#net-triangle).
+    pub fn add_net_triangle_group(
+        &mut self,
+        name: &str,
+        section: NetTriangleSection,
+    ) -> Result<NetGroupId> {
+        section.validate(name)?;
+        if self.net_groups.iter().any(|g| g.name == name) {
+            return Err(FemError::InvalidModel(format!(
+                "net triangle group '{name}' defined twice"
+            )));
+        }
+        self.net_groups.push(NetTriangleGroup {
+            name: name.to_string(),
+            section,
+            triangles: Vec::new(),
+        });
+        Ok(NetGroupId(self.net_groups.len() - 1))
+    }
+
+    /// Adds a net triangle (Priour's element, docs/theory/fem.md#net-triangle) on three
+    /// distinct nodes with the mesh coordinates (U, V) of each: how many mesh bars along the
+    /// two twine directions separate the node from an origin. Either orientation of the
+    /// (U, V) triangle is accepted; it must span an area. Returns the triangle's index.
+    pub fn add_net_triangle(
+        &mut self,
+        group: NetGroupId,
+        nodes: [usize; 3],
+        uv: [[f64; 2]; 3],
+    ) -> Result<usize> {
+        let id = self.net_triangles.len();
+        let what = format!("net triangle {id}");
+        for nd in nodes {
+            self.check_node(&what, nd)?;
+        }
+        if nodes[0] == nodes[1] || nodes[1] == nodes[2] || nodes[0] == nodes[2] {
+            return Err(FemError::InvalidModel(format!(
+                "{what} needs three distinct nodes, got {}, {}, {}",
+                nodes[0], nodes[1], nodes[2]
+            )));
+        }
+        for (k, p) in uv.iter().enumerate() {
+            for (c, &val) in ["U", "V"].iter().zip(p) {
+                if !val.is_finite() {
+                    return Err(invalid(
+                        format!("{what} mesh coordinate {c} of node {}", nodes[k]),
+                        val,
+                        "finite",
+                    ));
+                }
+            }
+        }
+        let g = self.net_groups.get(group.0).ok_or_else(|| {
+            FemError::InvalidModel(format!(
+                "{what}: net triangle group id {} does not exist",
+                group.0
+            ))
+        })?;
+        let t = NetTriangle::new(nodes, uv, group.0, &g.section).ok_or(
+            FemError::DegenerateNetTriangle {
+                triangle: id,
+                nodes,
+                uv,
+                area: NetTriangle::signed_uv_area(uv),
+            },
+        )?;
+        self.net_triangles.push(t);
+        self.net_groups[group.0].triangles.push(id);
         Ok(id)
     }
 
@@ -714,6 +791,11 @@ impl ModelBuilder {
         for p in &self.points {
             attached[p.node] = true;
         }
+        for t in &self.net_triangles {
+            for nd in t.nodes {
+                attached[nd] = true;
+            }
+        }
         for e in &self.rods.edges {
             attached[e.carrier] = true;
         }
@@ -739,6 +821,12 @@ impl ModelBuilder {
             if e.contact_diameter > 0.0 {
                 bed_coef[e.a] += 0.5 * e.l0 * e.contact_diameter;
                 bed_coef[e.b] += 0.5 * e.l0 * e.contact_diameter;
+            }
+        }
+        for t in &self.net_triangles {
+            let m = t.mass() / 3.0;
+            for nd in t.nodes {
+                lumped_mass[nd] += m;
             }
         }
         for p in &self.points {
@@ -775,10 +863,17 @@ impl ModelBuilder {
                 rods.auxiliary[g] = true;
             }
         }
-        let mean_length = if self.elements.is_empty() {
+        let n_members = self.elements.len() + self.net_triangles.len();
+        let mean_length = if n_members == 0 {
             1.0
         } else {
-            self.elements.iter().map(|e| e.l0).sum::<f64>() / self.elements.len() as f64
+            (self.elements.iter().map(|e| e.l0).sum::<f64>()
+                + self
+                    .net_triangles
+                    .iter()
+                    .map(|t| t.bar_length())
+                    .sum::<f64>())
+                / n_members as f64
         };
         Ok(Model {
             env,
@@ -791,6 +886,8 @@ impl ModelBuilder {
             motions: self.motions,
             hinges: self.hinges,
             rods,
+            net_triangles: self.net_triangles,
+            net_groups: self.net_groups,
             lumped_mass,
             weight,
             point_force,
@@ -880,6 +977,8 @@ pub struct Model {
     pub(crate) motions: Vec<Motion>,
     pub(crate) hinges: Vec<Hinge>,
     pub(crate) rods: Rods,
+    pub(crate) net_triangles: Vec<NetTriangle>,
+    pub(crate) net_groups: Vec<NetTriangleGroup>,
     /// Lumped structural mass per node [kg] (twist carriers: spin inertia [kg·m²]).
     pub(crate) lumped_mass: Vec<f64>,
     /// Nodal weight vector [N].
@@ -943,6 +1042,25 @@ impl Model {
     pub fn is_auxiliary(&self, i: usize) -> bool {
         self.rods.auxiliary.get(i).copied().unwrap_or(false)
     }
+    /// Net triangles (docs/theory/fem.md#net-triangle).
+    pub fn net_triangles(&self) -> &[NetTriangle] {
+        &self.net_triangles
+    }
+    /// Net triangle groups.
+    pub fn net_triangle_groups(&self) -> &[NetTriangleGroup] {
+        &self.net_groups
+    }
+    /// The twines of net triangle `i` at node positions `x` (all nodes, e.g. `State::x`):
+    /// twine vectors, tension of one twine of each family (static law) and opening angle.
+    pub fn net_triangle_twines(&self, i: usize, x: &[[f64; 3]]) -> NetTriangleTwines {
+        self.net_triangles[i].twines(x)
+    }
+    /// The largest axial stiffness EA of a cable or of one twine of a net triangle [N].
+    pub(crate) fn max_axial_stiffness(&self) -> f64 {
+        let cables = self.elements.iter().map(|e| e.ea);
+        let twines = self.net_triangles.iter().map(|t| t.twine.ea);
+        cables.chain(twines).fold(0.0, f64::max)
+    }
     /// Groups.
     pub fn groups(&self) -> &[Group] {
         &self.groups
@@ -969,7 +1087,7 @@ impl Model {
     pub(crate) fn point_mass_at(&self, i: usize) -> f64 {
         self.point_mass[i]
     }
-    /// Mean unstretched element length [m] (L_ref).
+    /// Mean unstretched length of the cables and the net triangles' bars [m] (L_ref).
     pub fn mean_element_length(&self) -> f64 {
         self.mean_length
     }

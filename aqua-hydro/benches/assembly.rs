@@ -35,6 +35,7 @@ fn model() -> (Vec<[f64; 3]>, Elements) {
                 nodes: PanelNodes::Quad([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]),
                 net,
                 wake_group: Some(0),
+                twines: None,
             });
         }
     }

@@ -8,7 +8,7 @@ use aqua_hydro::assembly::{MAX_DOFS, MAX_NODES};
 use aqua_hydro::{
     Block, ElementOutput, Elements, HydroError, LineElement, LineProps, LoadAssembly, MorisonModel,
     NetPanel, NetProps, Outputs, PanelNodes, PointElement, PointProps, PointShape, ScreenModel,
-    Wake, WakeCell, WakeGroup, WakeModel, WakeUpdate, Want,
+    TwineMap, Wake, WakeCell, WakeGroup, WakeModel, WakeUpdate, Want,
 };
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -96,6 +96,7 @@ fn worked_panel_force() {
             nodes: PanelNodes::Quad([0, 1, 2, 3]),
             net: net(ScreenModel::S1, 0.2),
             wake_group: None,
+            twines: None,
         }],
         ..Default::default()
     };
@@ -137,6 +138,7 @@ fn flat_panel(theta: f64, k: usize, triangles: bool, sn: f64) -> (Vec<[f64; 3]>,
                         nodes: PanelNodes::Triangle(tri),
                         net: net(ScreenModel::S1, sn),
                         wake_group: None,
+                        twines: None,
                     });
                 }
             } else {
@@ -144,6 +146,7 @@ fn flat_panel(theta: f64, k: usize, triangles: bool, sn: f64) -> (Vec<[f64; 3]>,
                     nodes: PanelNodes::Quad(q),
                     net: net(ScreenModel::S1, sn),
                     wake_group: None,
+                    twines: None,
                 });
             }
         }
@@ -350,11 +353,20 @@ fn mixed() -> (Vec<[f64; 3]>, Elements) {
                 nodes: PanelNodes::Quad([0, 1, 2, 3]),
                 net: net(ScreenModel::S3 { cyl_cd: None }, 0.2),
                 wake_group: None,
+                twines: None,
             },
             NetPanel {
                 nodes: PanelNodes::Triangle([2, 3, 4]),
                 net: net(ScreenModel::Bi2014, 0.2),
                 wake_group: None,
+                twines: None,
+            },
+            // A net triangle (twines of ~2–4 cm, Sn ≈ 0.2 and changing with the positions).
+            NetPanel {
+                nodes: PanelNodes::Triangle([2, 3, 4]),
+                net: net(ScreenModel::S1, 0.2),
+                wake_group: None,
+                twines: TwineMap::new([[0.0, 0.0], [50.0, 5.0], [10.0, 60.0]]),
             },
         ],
         lines: vec![
@@ -620,6 +632,7 @@ fn cage(wake: Wake, sn: f64) -> (Vec<[f64; 3]>, Elements) {
                 nodes: PanelNodes::Quad([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]),
                 net: net(ScreenModel::S1, sn),
                 wake_group: Some(0),
+                twines: None,
             });
         }
     }
@@ -628,6 +641,7 @@ fn cage(wake: Wake, sn: f64) -> (Vec<[f64; 3]>, Elements) {
             nodes: PanelNodes::Triangle([id(i, rows), id(i + 1, rows), centre]),
             net: net(ScreenModel::S1, sn),
             wake_group: Some(0),
+            twines: None,
         });
     }
     let els = Elements {
@@ -994,6 +1008,7 @@ proptest! {
                     nodes: PanelNodes::Quad(nodes),
                     net: net(ScreenModel::S2, 0.25),
                     wake_group: None,
+                    twines: None,
                 }],
                 ..Default::default()
             };

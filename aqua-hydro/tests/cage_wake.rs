@@ -41,6 +41,7 @@ fn add_cage(x: &mut Vec<[f64; 3]>, els: &mut Elements, cx: f64, cy: f64) -> std:
                 nodes: PanelNodes::Quad([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]),
                 net,
                 wake_group: Some(group),
+                twines: None,
             });
         }
     }
@@ -49,6 +50,7 @@ fn add_cage(x: &mut Vec<[f64; 3]>, els: &mut Elements, cx: f64, cy: f64) -> std:
             nodes: PanelNodes::Triangle([id(i, rows), id(i + 1, rows), centre]),
             net,
             wake_group: Some(group),
+            twines: None,
         });
     }
     els.wake_groups.push(WakeGroup {

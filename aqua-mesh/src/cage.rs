@@ -14,7 +14,8 @@ use crate::mesh::{
     CageCounts, MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride,
     replicate,
 };
-use crate::net::NetParams;
+use crate::net::{NetElement, NetParams};
+use crate::net_triangle::{TwineFrame, make_net_triangles};
 use crate::{Mesh, NetResolved};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -947,6 +948,15 @@ impl ResolvedCage {
             o.apply(obj, "groups.net_twines", &mut tw)?;
         }
         b.mesh.groups[g_tw].section = Some(tw);
+        if self.net.element == NetElement::Triangle {
+            let frame = TwineFrame::of(
+                &self.net,
+                TwineFrame::Horizontal {
+                    axis: self.origins[0],
+                },
+            );
+            make_net_triangles(&mut b, obj, &self.net, g_tw, g_pa, frame)?;
+        }
 
         let x = |n: usize| b.mesh.nodes[n];
         let counts = CageCounts {

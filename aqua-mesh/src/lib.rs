@@ -51,6 +51,7 @@ pub mod limits;
 pub mod line;
 pub mod mesh;
 pub mod net;
+pub mod net_triangle;
 pub mod panel;
 pub mod vtk;
 pub mod vtm;
@@ -68,7 +69,7 @@ pub use mesh::{
     MeshSummary, Object, ObjectKind, ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section,
     SectionOverride,
 };
-pub use net::{NetGrouping, NetParams, NetResolved, TwineAreas};
+pub use net::{MeshOrientation, NetElement, NetGrouping, NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};
 pub use vtk::{PvdWriter, VtkArray, VtkArrays, VtuSeries, write_vtu};
 pub use vtm::{BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays};

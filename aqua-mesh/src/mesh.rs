@@ -467,6 +467,9 @@ pub struct Panel {
     pub object: u32,
     /// Copy index.
     pub copy: u32,
+    /// Mesh coordinates (U, V) of the corners of a net triangle [half meshes]
+    /// (docs/theory/fem.md#net-triangle); `None` for a screen panel on a cable net.
+    pub uv: Option<[[f64; 2]; 3]>,
 }
 
 /// A point weight (sinker, tip weight, centre weight) on one node: a point body of mass W/g and
@@ -896,6 +899,7 @@ impl MeshBuilder {
             group,
             object: 0,
             copy: 0,
+            uv: None,
         });
         self.mesh.groups[group]
             .panels

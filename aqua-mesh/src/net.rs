@@ -39,6 +39,58 @@ pub struct NetParams {
     pub youngs_modulus: Option<f64>,
     /// `density` of the twine material [kg/m³], > 0. Default 1140.
     pub density: Option<f64>,
+    /// `element`: how the net is modelled, `"cable"` (numerical twines along the mesh lines,
+    /// the default) or `"triangle"` (Priour's net triangles, docs/theory/fem.md#net-triangle).
+    pub element: Option<NetElement>,
+    /// `orientation` of the twines on the surface (triangles only): `"square"` (twines along
+    /// and across the reference direction, the default) or `"diamond"` (at ±45° to it).
+    pub orientation: Option<MeshOrientation>,
+    /// `twine_direction` (triangles only): the reference direction of the twines, projected
+    /// onto each triangle. Default: the horizontal tangent of the surface (around the cage for
+    /// flat bottoms; along the panel's width for `[[panel]]`).
+    pub twine_direction: Option<[f64; 3]>,
+}
+
+/// How a net is modelled (`net.element`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NetElement {
+    /// Numerical twines: tension-only cables along the mesh lines, λ physical twines each
+    /// (docs/theory/cages.md#mesh-grouping).
+    #[default]
+    Cable,
+    /// Priour's net triangles: each triangle carries the twines its mesh-coordinate area holds
+    /// (docs/theory/fem.md#net-triangle).
+    Triangle,
+}
+
+impl std::fmt::Display for NetElement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            NetElement::Cable => "cable",
+            NetElement::Triangle => "triangle",
+        })
+    }
+}
+
+/// How the twines lie on the surface (`net.orientation`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MeshOrientation {
+    /// Square mesh: U twines along the reference direction, V twines across it.
+    #[default]
+    Square,
+    /// Diamond mesh: the twines at +45° and −45° to the reference direction, meshes open at 90°.
+    Diamond,
+}
+
+impl std::fmt::Display for MeshOrientation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            MeshOrientation::Square => "square",
+            MeshOrientation::Diamond => "diamond",
+        })
+    }
 }
 
 /// Net parameters with defaults applied and validated.
@@ -56,6 +108,12 @@ pub struct NetResolved {
     pub youngs_modulus: f64,
     /// ρ [kg/m³].
     pub density: f64,
+    /// Net model.
+    pub element: NetElement,
+    /// Twine orientation (triangles).
+    pub orientation: MeshOrientation,
+    /// Reference twine direction (triangles), if given.
+    pub twine_direction: Option<[f64; 3]>,
 }
 
 /// The net of one object: inputs and the mesh-grouping numbers
@@ -90,6 +148,10 @@ pub struct NetGrouping {
     pub youngs_modulus: f64,
     /// Twine density [kg/m³].
     pub density: f64,
+    /// Net model (`net.element`).
+    pub element: NetElement,
+    /// Twine orientation (`net.orientation`).
+    pub orientation: MeshOrientation,
 }
 
 impl NetGrouping {
@@ -182,6 +244,25 @@ impl NetParams {
                 s
             }
         };
+        if self.element == Some(NetElement::Triangle) {
+            for (key, given) in [
+                ("solidity", self.solidity.is_some()),
+                ("grouping_ratio", self.grouping_ratio.is_some()),
+            ] {
+                if given {
+                    notices.push(format!(
+                        "warning: {object}: net.{key} is not used by net.element = \"triangle\": \
+                         the triangles hold the physical twines, and their solidity follows \
+                         twine_diameter, half_mesh and the twines' stretch"
+                    ));
+                }
+            }
+        } else if self.orientation.is_some() || self.twine_direction.is_some() {
+            notices.push(format!(
+                "warning: {object}: net.orientation and net.twine_direction are used only by \
+                 net.element = \"triangle\"; the cable net's twines follow the mesh lines"
+            ));
+        }
         if let Some(g) = self.grouping_ratio
             && !(g.is_finite() && g >= 1.0)
         {
@@ -207,6 +288,22 @@ impl NetParams {
                 "net.density",
                 self.density.unwrap_or(DEFAULT_NET_DENSITY),
             )?,
+            element: self.element.unwrap_or_default(),
+            orientation: self.orientation.unwrap_or_default(),
+            twine_direction: match self.twine_direction {
+                Some(t) if t.iter().all(|v| v.is_finite()) && t.iter().any(|v| *v != 0.0) => {
+                    Some(t)
+                }
+                Some(t) => {
+                    return Err(MeshError::param(
+                        object,
+                        "net.twine_direction",
+                        format!("{t:?}"),
+                        "must be a finite, non-zero vector [x, y, z]",
+                    ));
+                }
+                None => None,
+            },
         })
     }
 }
@@ -352,7 +449,7 @@ impl NetResolved {
                 ),
             ));
         }
-        if lambda > LAMBDA_WARN {
+        if lambda > LAMBDA_WARN && self.element == NetElement::Cable {
             notices.push(format!(
                 "warning: {object}: grouping ratio λ = {lambda:.2} > {LAMBDA_WARN}; consider a \
                  shorter element_length"
@@ -383,6 +480,8 @@ impl NetResolved {
             hydro_diameter: lambda * self.twine_diameter,
             youngs_modulus: self.youngs_modulus,
             density: self.density,
+            element: self.element,
+            orientation: self.orientation,
         };
         Ok((grouping, lambdas.iter().map(|g| g / lambda).collect()))
     }

@@ -5,7 +5,8 @@
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role};
-use crate::net::NetParams;
+use crate::net::{NetElement, NetParams};
+use crate::net_triangle::{TwineFrame, make_net_triangles};
 use crate::{Mesh, SectionOverride};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -275,6 +276,10 @@ impl PanelParams {
             o.apply(obj, "groups.net_twines", &mut tw)?;
         }
         b.mesh.groups[g_tw].section = Some(tw);
+        if net.element == NetElement::Triangle {
+            let frame = TwineFrame::of(&net, TwineFrame::Along(e_w.into()));
+            make_net_triangles(&mut b, obj, &net, g_tw, g_pa, frame)?;
+        }
         b.mesh.objects.push(Object {
             name,
             kind: ObjectKind::Panel,

@@ -182,6 +182,19 @@ fn physics(prep: &Prepared, ncomp: usize) -> Vec<Physics> {
             why: format!("{} net panels carry drag and lift", el.panels.len()),
         },
         Physics {
+            name: "net triangles",
+            active: !built.model.net_triangles().is_empty(),
+            why: if built.model.net_triangles().is_empty() {
+                "off (net.element = \"triangle\" models a net by Priour's triangles)".into()
+            } else {
+                format!(
+                    "{} triangles carry the physical twines; their solidity follows the \
+                     twines' stretch (docs/theory/fem.md#net-triangle)",
+                    built.model.net_triangles().len()
+                )
+            },
+        },
+        Physics {
             name: "Morison drag on lines",
             active: drag_lines > 0,
             why: format!("{drag_lines} of {} line elements", el.lines.len()),

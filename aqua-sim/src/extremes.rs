@@ -73,7 +73,7 @@ impl Extremes {
         Self {
             columns,
             values: vec![0.0; n],
-            groups: vec![0.0; built.model.groups().len()],
+            groups: vec![0.0; built.group_names.len()],
             stresses: vec![0.0; built.pipes.len()],
             ends: vec![[0.0; 4]; built.line_ends.len()],
             max: vec![f64::NEG_INFINITY; n],
@@ -112,7 +112,7 @@ impl Extremes {
             m[2],
         ];
         self.values[..head.len()].copy_from_slice(&head);
-        group_max_tensions(built, out, &mut self.groups);
+        group_max_tensions(built, out, &state.x, &mut self.groups);
         crate::pipe_stress::group_max_stresses(built, out, &mut self.stresses);
         line_end_loads(built, out, &mut self.ends);
         let k = head.len();

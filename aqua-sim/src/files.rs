@@ -344,7 +344,9 @@ impl RunFiles {
         let arrays = StepArrays {
             point,
             line,
-            panel: vec![BlockArray::scalar("wake_factor", wake_panels.to_vec())],
+            panel: std::iter::once(BlockArray::scalar("wake_factor", wake_panels.to_vec()))
+                .chain(crate::net_triangles::panel_arrays(built, x))
+                .collect(),
         };
         self.take_error()?;
         let job = Job::Step(Box::new(StepJob {

@@ -34,6 +34,7 @@ pub mod error;
 pub mod estimate;
 pub mod extremes;
 pub mod files;
+pub mod net_triangles;
 pub mod overrides;
 pub mod pipe_stress;
 pub mod plan;

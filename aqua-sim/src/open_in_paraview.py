@@ -8,7 +8,8 @@
 # or in the GUI with View > Python Shell > Run Script.
 #
 # What it shows: every object's lines (twines, ropes, chains) as thick lines coloured by
-# `tension` [N] (0 where a member is slack), the net panels translucent, and the nodes that
+# `tension` [N] (0 where a member is slack), the net panels translucent (net triangles coloured
+# by the tension of one U twine, `twine_tension_u` [N]), and the nodes that
 # carry a point mass (sinkers, weights, [[point]] bodies) as spheres.
 #
 # Options:
@@ -196,10 +197,34 @@ def main(argv):
     ld.RenderLinesAsTubes = 1
 
     pd = Show(panels, view)
-    pd.ColorArrayName = ["POINTS", ""]
-    pd.AmbientColor = [0.55, 0.75, 0.9]
-    pd.DiffuseColor = [0.55, 0.75, 0.9]
-    pd.Opacity = 0.3
+    panels.UpdatePipeline(times[0])
+    if "twine_tension_u" in panels.CellData.keys():
+        # Net triangles carry the twines themselves (no twine lines): colour them by the
+        # tension of one U twine, with its range over all steps.
+        umax = 0.0
+        for t in times:
+            panels.UpdatePipeline(t)
+            umax = max(umax, panels.CellData["twine_tension_u"].GetRange()[1])
+        ColorBy(pd, ("CELLS", "twine_tension_u"))
+        plut = GetColorTransferFunction("twine_tension_u")
+        plut.RescaleTransferFunction(0.0, max(umax, 1e-9))
+        plut.AutomaticRescaleRangeMode = "Never"
+        pd.SetScalarBarVisibility(view, True)
+        pbar = GetScalarBar(plut, view)
+        pbar.Title = "U twine tension [N]"
+        pbar.ComponentTitle = ""
+        pbar.WindowLocation = "Any Location"
+        pbar.Orientation = "Vertical"
+        pbar.Position = [0.03, 0.1]
+        pbar.ScalarBarLength = 0.6
+        pbar.TitleFontSize = 16
+        pbar.LabelFontSize = 14
+        pbar.RangeLabelFormat = "%-#.3g"
+    else:
+        pd.ColorArrayName = ["POINTS", ""]
+        pd.AmbientColor = [0.55, 0.75, 0.9]
+        pd.DiffuseColor = [0.55, 0.75, 0.9]
+        pd.Opacity = 0.3
 
     md = Show(masses, view)
     md.ColorArrayName = ["POINTS", ""]

@@ -159,16 +159,31 @@ pub fn support_reactions(built: &Built, x: &[[f64; 3]], out: &Outputs) -> ([f64;
     (reaction, [moment.x, moment.y, moment.z])
 }
 
-/// The largest tension of each structural group [N] into `dst` (one per group; 0 for a group
-/// without elements).
-pub fn group_max_tensions(built: &Built, out: &Outputs, dst: &mut [f64]) {
-    for (d, g) in dst.iter_mut().zip(built.model.groups()) {
+/// The largest tension of each structural group [N] into `dst` (one per group of
+/// [`Built::group_names`]; 0 for a group without elements): the cable groups, then the net
+/// triangle groups, whose value is the tension of one physical twine at positions `x`
+/// (docs/theory/fem.md#net-triangle).
+pub fn group_max_tensions(built: &Built, out: &Outputs, x: &[[f64; 3]], dst: &mut [f64]) {
+    let model = &built.model;
+    let (cables, nets) = dst.split_at_mut(model.groups().len().min(dst.len()));
+    for (d, g) in cables.iter_mut().zip(model.groups()) {
         let t = g
             .elements
             .iter()
             .map(|&e| out.tension[e])
             .fold(f64::NEG_INFINITY, f64::max);
         *d = if t.is_finite() { t } else { 0.0 };
+    }
+    for (d, g) in nets.iter_mut().zip(model.net_triangle_groups()) {
+        let t = g
+            .triangles
+            .iter()
+            .map(|&i| {
+                let tw = model.net_triangle_twines(i, x);
+                tw.tension_u.max(tw.tension_v)
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        *d = if t.is_finite() { t.max(0.0) } else { 0.0 };
     }
 }
 
@@ -211,8 +226,8 @@ impl SummaryRow {
         let x = &state.x;
         let (reaction, reaction_moment) = support_reactions(built, x, out);
         let volume = total_volume(built, x);
-        let mut max_tension = vec![0.0; built.model.groups().len()];
-        group_max_tensions(built, out, &mut max_tension);
+        let mut max_tension = vec![0.0; built.group_names.len()];
+        group_max_tensions(built, out, x, &mut max_tension);
         let mut max_stress = vec![0.0; built.pipes.len()];
         crate::pipe_stress::group_max_stresses(built, out, &mut max_stress);
         let mut line_ends = vec![[0.0; 4]; built.line_ends.len()];

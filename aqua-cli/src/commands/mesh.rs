@@ -373,6 +373,13 @@ pub fn report_with(
                 n.elastic_diameter,
                 n.hydro_diameter
             );
+            if n.element == aqua_mesh::NetElement::Triangle {
+                println!(
+                    "  net element: triangle ({} mesh, Priour): the triangles carry the twines; \
+                     λ and the diameters above are not used",
+                    n.orientation
+                );
+            }
         }
         println!(
             "  {:<16} {:<14} {:>7} {:>7} {:>7} {:>11} {:>9} {:>9} {:>9}",

@@ -72,8 +72,9 @@ impl DynamicSolver<'_> {
             mv,
         );
         let mut b = Balance {
-            // Axial and bending (docs/theory/fem.md#bending) strain energy.
-            strain: out.strain_energy(model) + self.sys.bending_energy(),
+            // Axial, bending (docs/theory/fem.md#bending) and net triangle strain energy.
+            strain: out.strain_energy(model) + self.sys.element_energy(),
+            power: self.sys.net_damping_power(model),
             ..Balance::default()
         };
         for i in 0..n {
@@ -178,6 +179,14 @@ impl DynamicSolver<'_> {
             if dot < 0.0 && resisted {
                 return Some(format!(
                     "element {e} turned over in one step (its direction reversed while it carried load)"
+                ));
+            }
+        }
+        for (i, t) in model.net_triangles().iter().enumerate() {
+            if let Some(family) = t.turned_over(&self.state.x, &self.x1) {
+                return Some(format!(
+                    "net triangle {i}: its {family} twines turned over in one step (their \
+                     direction reversed while they carried load)"
                 ));
             }
         }

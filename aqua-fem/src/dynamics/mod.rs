@@ -164,7 +164,7 @@ impl<'m> DynamicSolver<'m> {
         let mut a = std::mem::take(&mut state.a);
         model.apply_constraints(state.t, 1.0, &mut state.x, &mut state.v, &mut a);
         state.a = a;
-        let max_ea = model.elements().iter().map(|e| e.ea).fold(0.0, f64::max);
+        let max_ea = model.max_axial_stiffness();
         let wsum: f64 = model.weight.iter().map(|w| w[2].abs()).sum();
         let nf = sys.n_free();
         let lines = LineRelaxation::new(model, &sys);

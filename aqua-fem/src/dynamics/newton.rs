@@ -139,6 +139,7 @@ impl DynamicSolver<'_> {
             let strain_check = |sys: &System, hist: &Vec<f64>| match sys
                 .cable
                 .iter()
+                .chain(sys.net_twines())
                 .find(|c| c.strain.abs() > max_strain)
             {
                 Some(c) => Err(Attempt {

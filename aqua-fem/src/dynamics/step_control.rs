@@ -5,6 +5,7 @@
 use super::DynamicSolver;
 use super::energy::Energies;
 use super::newton::Attempt;
+use crate::cable::CableEval;
 use crate::error::{FemError, Result};
 use crate::loads::LoadProvider;
 use serde::{Deserialize, Serialize};
@@ -272,7 +273,11 @@ impl DynamicSolver<'_> {
                     // The clamp changes the tangent only where a slack element pushes (the
                     // scheme says where that can be); a retry that cannot differ costs max_iter.
                     let scheme = &self.scheme;
-                    if !self.clamp && self.sys.cable.iter().any(|c| scheme.clamp_matters(c)) {
+                    let matters = |c: &CableEval| scheme.clamp_matters(c);
+                    let sys = &self.sys;
+                    if !self.clamp
+                        && (sys.cable.iter().any(matters) || sys.net_twines().any(matters))
+                    {
                         // Retry the same step with T ≥ 0 in the slack elements' geometric term.
                         self.clamp = true;
                         continue;

@@ -184,7 +184,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     let sys = System::new(model, &*provider)?;
     let n = model.n_nodes();
     let nf = sys.n_free();
-    let max_ea = model.elements().iter().map(|e| e.ea).fold(0.0, f64::max);
+    let max_ea = model.max_axial_stiffness();
     let wsum: f64 = model.weight.iter().map(|w| w[2].abs()).sum::<f64>()
         + model
             .point_force
@@ -347,6 +347,14 @@ fn node_axial_stiffness(model: &Model) -> Vec<f64> {
         d[e.a] += e.ea / e.l0;
         d[e.b] += e.ea / e.l0;
     }
+    // Net triangles: the diagonal of their taut stiffness, A_uv·(a_k² + b_k²)·EA/l_p.
+    for t in model.net_triangles() {
+        let (gu, gv) = t.shape_gradients();
+        let k = t.uv_area() * t.twine.ea / t.twine.l0;
+        for (j, &nd) in t.nodes.iter().enumerate() {
+            d[nd] += k * (gu[j] * gu[j] + gv[j] * gv[j]);
+        }
+    }
     d
 }
 
@@ -412,6 +420,23 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             noise[e.a] += t * t;
             noise[e.b] += t * t;
         }
+        for tr in self.model.net_triangles() {
+            let xm = tr
+                .nodes
+                .iter()
+                .flat_map(|&nd| x[nd])
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let (gu, gv) = tr.shape_gradients();
+            let l = tr.twine.l0;
+            let t = f64::EPSILON
+                * tr.twine.ea
+                * (xm * gu.iter().chain(&gv).map(|g| g.abs()).sum::<f64>() + l)
+                / l;
+            for (j, &nd) in tr.nodes.iter().enumerate() {
+                let f = tr.uv_area() * t * (gu[j].abs() + gv[j].abs());
+                noise[nd] += f * f;
+            }
+        }
         let mut s2 = 0.0;
         for &gd in &self.sys.dof_of_free {
             s2 += noise[gd / 3];
@@ -426,7 +451,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         for (l, c) in self.len_x.iter_mut().zip(&self.sys.cable) {
             *l = c.length;
         }
-        self.bend_x = self.sys.bending_energy();
+        self.bend_x = self.sys.element_energy();
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             let (i, k) = (gd / 3, gd % 3);
             self.f_frozen[f] = self.sys.fext[i][k] - self.sys.fbed[i][k];
@@ -452,6 +477,19 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             let xb = self.x[e.b].iter().fold(0.0f64, |m, v| m.max(v.abs()));
             sum += c.tension.abs() * (xa.max(xb) + l) + cable::strain_energy(e, (l - e.l0) / e.l0);
         }
+        for (t, ev) in self.model.net_triangles().iter().zip(&self.sys.net) {
+            let xm = t
+                .nodes
+                .iter()
+                .flat_map(|&nd| self.x[nd])
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let (gu, gv) = t.shape_gradients();
+            let su: f64 = gu.iter().map(|g| g.abs()).sum();
+            let sv: f64 = gv.iter().map(|g| g.abs()).sum();
+            sum += t.uv_area()
+                * (ev.u.tension.abs() * (xm * su + ev.u.length)
+                    + ev.v.tension.abs() * (xm * sv + ev.v.length));
+        }
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             sum += self.f_frozen[f].abs() * self.x[gd / 3][gd % 3].abs();
         }
@@ -470,7 +508,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     /// Merit decrease from a base point (positions, element lengths, bending energy and
     /// external force there) to `self.x_trial` (evaluated).
     fn merit_decrease_from(&self, x0: &[[f64; 3]], len0: &[f64], bend0: f64, f0: &[f64]) -> f64 {
-        let mut dw = self.sys.bending_energy() - bend0;
+        let mut dw = self.sys.element_energy() - bend0;
         for ((e, c), &l_x) in self.model.elements().iter().zip(&self.sys.cable).zip(len0) {
             dw += cable::strain_energy(e, (c.length - e.l0) / e.l0)
                 - cable::strain_energy(e, (l_x - e.l0) / e.l0);

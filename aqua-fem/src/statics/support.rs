@@ -6,8 +6,8 @@ use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::seabed::BedLaw;
 
-/// The connected parts of the structure (joined by cable and load elements): the lowest
-/// node index of each node's part.
+/// The connected parts of the structure (joined by cable, net triangle and load elements):
+/// the lowest node index of each node's part.
 pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
     let n = model.n_nodes();
     let mut parent: Vec<usize> = (0..n).collect();
@@ -26,6 +26,10 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
     };
     for e in model.elements() {
         union(&mut parent, e.a, e.b);
+    }
+    for t in model.net_triangles() {
+        union(&mut parent, t.nodes[0], t.nodes[1]);
+        union(&mut parent, t.nodes[0], t.nodes[2]);
     }
     for e in model.rod_edges() {
         union(&mut parent, e.nodes[0], e.nodes[1]);

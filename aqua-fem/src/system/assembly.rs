@@ -80,6 +80,7 @@ impl System {
         }
         self.evaluate_hinges(model, x, o.jacobian.is_some())?;
         self.evaluate_rods(model, x, o.jacobian.is_some())?;
+        self.evaluate_net_triangles(model, x, v, o)?;
         // Load elements.
         let nl = self.load_nn.len();
         if nl > 0 {
@@ -155,6 +156,7 @@ impl System {
             }
         }
         self.add_rod_forces(model);
+        self.add_net_forces(model);
         for e in 0..nl {
             let nn = self.load_nn[e];
             let chunk = &self.load_buf[e * self.load_stride..];
@@ -277,6 +279,8 @@ impl System {
         if cf.k != 0.0 {
             super::rods::add_tangents(&self.rod_pos, &self.rod, vals, cf.k);
         }
+        let net_mass = if o.consistent_mass { mass_c } else { 0.0 };
+        super::net_triangles::add_tangents(&self.net_pos, model, &self.net, vals, cf, net_mass);
         // Node blocks: lumped/point mass, added mass, seabed.
         for i in 0..self.n_nodes {
             let p = &self.node_pos[i];
@@ -421,6 +425,12 @@ impl System {
         self.hinge.iter().map(|h| h.energy).sum::<f64>() + self.rod_energy()
     }
 
+    /// Strain energy of everything but the cables at the last evaluation: bending (hinges,
+    /// rods) and the net triangles' twines [J].
+    pub fn element_energy(&self) -> f64 {
+        self.bending_energy() + self.net_energy()
+    }
+
     /// Per node, the largest row sum of |∂²W/∂x²| of the hinges (Gershgorin bound of the
     /// bending stiffness) at the last evaluation with a Jacobian [N/m], added into `out`.
     pub fn add_hinge_row_sums(&self, model: &Model, out: &mut [f64]) {
@@ -452,6 +462,7 @@ pub(crate) fn mul_mass(model: &Model, consistent: bool, a: &[[f64; 3]], out: &mu
                 out[e.b][k] += m * (a[e.a][k] + 2.0 * a[e.b][k]);
             }
         }
+        super::net_triangles::add_consistent_mass(model, a, out);
     } else {
         for i in 0..n {
             let m = model.lumped_mass[i];

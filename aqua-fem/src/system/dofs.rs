@@ -7,6 +7,7 @@ use crate::cable::CableEval;
 use crate::error::{FemError, Result};
 use crate::loads::{LoadProvider, MAX_LOAD_NODES};
 use crate::model::Model;
+use crate::net_triangle::NetTriangleEval;
 use crate::rod::{ROD_DOFS, RodEval, RodVertex};
 
 /// The five nodes of a rod vertex's stencil: three positions and two twist carriers.
@@ -92,6 +93,11 @@ impl System {
                 adj[p].extend(dofs.iter().filter(|&&q| q != p));
             }
         }
+        for t in model.net_triangles() {
+            for &p in &t.nodes {
+                adj[p].extend(t.nodes.iter().filter(|&&q| q != p));
+            }
+        }
         for (e, nodes) in load_nodes.iter().enumerate() {
             let nn = load_nn[e];
             for &p in &nodes[..nn] {
@@ -161,6 +167,20 @@ impl System {
             }
             hinge_pos.push(p);
         }
+        let mut net_pos = Vec::with_capacity(model.net_triangles().len());
+        for t in model.net_triangles() {
+            let mut p = [NONE; 81];
+            for (i, &ni) in t.nodes.iter().enumerate() {
+                for (j, &nj) in t.nodes.iter().enumerate() {
+                    for ki in 0..3 {
+                        for kj in 0..3 {
+                            p[(3 * i + ki) * 9 + 3 * j + kj] = pos(ni, ki, nj, kj);
+                        }
+                    }
+                }
+            }
+            net_pos.push(p);
+        }
         let mut rod_pos = Vec::with_capacity(model.rod_vertices().len());
         for v in model.rod_vertices() {
             let mut p = [NONE; ROD_DOFS * ROD_DOFS];
@@ -228,6 +248,7 @@ impl System {
             cable_pos,
             hinge_pos,
             rod_pos,
+            net_pos,
             node_pos,
             load_nodes,
             load_nn,
@@ -238,6 +259,7 @@ impl System {
             cable: vec![CableEval::default(); model.elements().len()],
             hinge: vec![HingeEval::default(); model.hinges().len()],
             rod: vec![RodEval::default(); model.rod_vertices().len()],
+            net: vec![NetTriangleEval::default(); model.net_triangles().len()],
             rod_frames: model.rod_edges().iter().map(|e| e.frame).collect(),
             fint: vec![[0.0; 3]; n],
             fext: vec![[0.0; 3]; n],

@@ -10,11 +10,13 @@ mod assembly;
 mod dofs;
 mod linear_solver;
 mod load_derivatives;
+mod net_triangles;
 mod rods;
 
 use crate::bending::HingeEval;
 use crate::cable::CableEval;
 use crate::loads::{ElementLoad, MAX_LOAD_NODES};
+use crate::net_triangle::NetTriangleEval;
 use crate::rod::{EdgeFrame, ROD_DOFS, RodEval};
 use crate::symmetric::SymmetricSolver;
 pub(crate) use assembly::mul_mass;
@@ -66,6 +68,7 @@ pub(crate) struct System {
     cable_pos: Vec<[usize; 36]>,
     hinge_pos: Vec<[usize; 81]>,
     rod_pos: Vec<[usize; ROD_DOFS * ROD_DOFS]>,
+    net_pos: Vec<[usize; 81]>,
     node_pos: Vec<[usize; 9]>,
     load_nodes: Vec<[usize; MAX_LOAD_NODES]>,
     load_nn: Vec<usize>,
@@ -80,6 +83,8 @@ pub(crate) struct System {
     pub hinge: Vec<HingeEval>,
     /// Per-rod-vertex results of the last evaluation (docs/theory/fem.md#rod).
     pub(crate) rod: Vec<RodEval>,
+    /// Per-net-triangle results of the last evaluation (docs/theory/fem.md#net-triangle).
+    pub(crate) net: Vec<NetTriangleEval>,
     /// Reference frame of each rod edge: its frame at the last accepted state (as built until
     /// a dynamic step is accepted).
     pub(crate) rod_frames: Vec<EdgeFrame>,
@@ -138,7 +143,7 @@ pub(crate) struct System {
     /// Refinement sweeps of the last solve with a fresh L·D·Lᵀ.
     sym_fresh_sweeps: usize,
     load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
-    /// When set, the cables' elastic force is the discrete gradient between these start and
+    /// When set, the cables' (and net triangles') elastic force is the discrete gradient between these start and
     /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
     /// in the configuration passed to `evaluate` (the midpoint).
     pub secant: Option<StepEnds>,

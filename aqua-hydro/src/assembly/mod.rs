@@ -26,6 +26,7 @@ use crate::cylinder::RE_CRISIS;
 use crate::error::{HydroError, check_non_negative, check_positive, check_solidity};
 use crate::line::{self, LineProps};
 use crate::morison::MorisonModel;
+use crate::net_triangle::TwineMap;
 use crate::panel::{self, M3, NetProps, V3, Want};
 use crate::point::{self, PointProps, PointShape};
 use crate::screen::{RE_MAX, ScreenModel};
@@ -74,6 +75,9 @@ pub struct NetPanel {
     pub net: NetProps,
     /// Index of the cage copy (wake group) it belongs to, if any.
     pub wake_group: Option<usize>,
+    /// The twine map of a net triangle, whose solidity then follows its twines
+    /// (docs/theory/hydrodynamics.md#net-triangle-screen); `None`: `net.solidity` holds.
+    pub twines: Option<TwineMap>,
 }
 
 /// A Morison line element (rope, pipe, chain, numerical net twine).
@@ -866,8 +870,51 @@ impl LoadAssembly {
                     };
                     let p = [pn[nodes[0]], pn[nodes[1]], pn[nodes[2]]];
                     let zeta = [zn[nodes[0]], zn[nodes[1]], zn[nodes[2]]];
-                    let t =
-                        panel::triangle(&panel.net, p, zeta, w, weight, self.rho, self.nu, want);
+                    // A net triangle's solidity follows its twines, and the position
+                    // Jacobian with it (docs/theory/hydrodynamics.md#net-triangle-screen).
+                    let (net, dsn) = match &panel.twines {
+                        Some(map) => {
+                            let (sn, grad) = if want.dfdx {
+                                map.solidity_gradient(&p, panel.net.twine_diameter)
+                            } else {
+                                (map.solidity(&p, panel.net.twine_diameter), [V3::zeros(); 3])
+                            };
+                            let net = NetProps {
+                                solidity: sn,
+                                ..panel.net
+                            };
+                            (net, want.dfdx.then_some(grad))
+                        }
+                        None => (panel.net, None),
+                    };
+                    let mut t = panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
+                    if let Some(grad) = dsn
+                        && grad.iter().any(|g| g.norm_squared() > 0.0)
+                    {
+                        // ∂F/∂Sn by a central difference of the screen model (any model).
+                        let h = 1e-6 * net.solidity;
+                        let at = |sn: f64| {
+                            let props = NetProps {
+                                solidity: sn,
+                                ..net
+                            };
+                            panel::triangle(
+                                &props,
+                                p,
+                                zeta,
+                                w,
+                                weight,
+                                self.rho,
+                                self.nu,
+                                Want::default(),
+                            )
+                            .force
+                        };
+                        let dfds = (at(net.solidity + h) - at(net.solidity - h)) / (2.0 * h);
+                        for q in 0..3 {
+                            t.dfdp[q] += dfds * grad[q].transpose();
+                        }
+                    }
                     if t.reynolds > 0.0 {
                         re_lo = re_lo.min(t.reynolds);
                         re_hi = re_hi.max(t.reynolds);

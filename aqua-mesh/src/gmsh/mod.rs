@@ -19,7 +19,8 @@ use crate::error::{FilePos, MeshError, Result};
 use crate::mesh::{
     MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride, replicate,
 };
-use crate::net::NetParams;
+use crate::net::{NetElement, NetParams};
+use crate::net_triangle::{TwineFrame, make_net_triangles};
 use nalgebra::{Point3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -563,6 +564,18 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
                 o.apply(obj, "groups.net_twines", &mut s)?;
             }
             b.mesh.groups[g].section = Some(s);
+            if resolved.element == NetElement::Triangle {
+                let panels = panels.ok_or_else(|| {
+                    MeshError::param(
+                        obj,
+                        "net.element",
+                        "triangle",
+                        "needs net faces (a physical group `net` of dimension 2)",
+                    )
+                })?;
+                let frame = TwineFrame::of(&resolved, TwineFrame::Horizontal { axis: origins[0] });
+                make_net_triangles(&mut b, obj, &resolved, g, panels, frame)?;
+            }
             Some(grouping)
         }
         _ => None,

@@ -45,7 +45,8 @@ pub struct Built {
     pub panel_loaded: Vec<bool>,
     /// Per panel and line load element (assembly order): its mesh cell.
     pub load_cells: Vec<LoadCell>,
-    /// Names of the structural groups (index = fem group id).
+    /// Names of the structural groups: the cable groups (index = fem group id), then the net
+    /// triangle groups (index − cable groups = net triangle group id).
     pub group_names: Vec<String>,
     /// Nodes with fixed or prescribed DOFs.
     pub supported_nodes: Vec<usize>,
@@ -68,6 +69,9 @@ pub struct Built {
     /// The groups of pipes modelled as rods, whose stresses are reported
     /// (docs/theory/fem.md#rod).
     pub pipes: Vec<crate::pipe_stress::PipeGroup>,
+    /// Per mesh panel: its net triangle in the model, if it is one
+    /// (docs/theory/fem.md#net-triangle).
+    pub panel_triangle: Vec<Option<usize>>,
 }
 
 /// The two ends of a single line (docs/theory/fem.md#outputs: report end reactions and end-element
@@ -213,6 +217,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         diagnostics,
         design,
         pipes,
+        panel_triangle: st.panel_triangle,
     })
 }
 

@@ -9,12 +9,12 @@ use crate::scene::{GroupSpec, Located, MotionKind, PrescribedSpec, Scene};
 use aqua_env::{Constants, Depth};
 use aqua_fem::{
     AxialDamping, CableSection, Dofs, Environment, ExternalMotion, GroupId, ModelBuilder, Motion,
-    PointBody, Seabed, SeabedFriction, UnstretchedLength,
+    NetGroupId, NetTriangleSection, PointBody, Seabed, SeabedFriction, UnstretchedLength,
 };
 use aqua_hydro::assembly::PointElement;
 use aqua_hydro::{PointProps, PointShape};
-use aqua_mesh::{Mesh, Section};
-use std::collections::BTreeSet;
+use aqua_mesh::{Mesh, PanelNodes, Section};
+use std::collections::{BTreeSet, HashMap};
 
 /// How prescribed nodes move.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -34,7 +34,8 @@ pub(super) struct Structure {
     pub builder: ModelBuilder,
     /// Per mesh group: the fem group id and the section with overrides applied.
     pub sections: Vec<Option<(GroupId, Section)>>,
-    /// Names of the structural groups (index = fem group id).
+    /// Names of the structural groups: the cable groups (index = fem group id), then the net
+    /// triangle groups.
     pub group_names: Vec<String>,
     /// Point bodies that carry water loads (volume or drag).
     pub hydro_points: Vec<PointElement>,
@@ -44,6 +45,8 @@ pub(super) struct Structure {
     pub external: Vec<(String, Vec<(usize, ExternalMotion)>)>,
     /// The `[[buoy]]`s that should float (for the design checks).
     pub buoys: Vec<crate::design::Floater>,
+    /// Per mesh panel: its net triangle in the model, if it is one.
+    pub panel_triangle: Vec<Option<usize>>,
 }
 
 /// The structural environment: gravity, water density and the seabed
@@ -83,8 +86,9 @@ pub(super) fn build_structure(
         b.add_node([p.x, p.y, p.z])
             .map_err(|e| SimError::at(format!("{file}: node"), e))?;
     }
-    let (sections, group_names) = cable_groups(scene, mesh, &mut b)?;
+    let (sections, mut group_names) = cable_groups(scene, mesh, &mut b)?;
     add_cables(&file, mesh, &sections, &mut b)?;
+    let panel_triangle = add_net_triangles(&file, mesh, &mut b, &mut group_names)?;
     // Sinkers and weights of the builders hang as point masses W/g
     // (docs/theory/cages.md#frame-ropes-and-weights).
     for w in &mesh.weights {
@@ -111,7 +115,54 @@ pub(super) fn build_structure(
         supported,
         external,
         buoys,
+        panel_triangle,
     })
+}
+
+/// The net triangles of every net with `net.element = "triangle"`, one group per object
+/// ("object/net_triangles") with the section of one physical twine: EA = E·πd²/4,
+/// μ = ρ·πd²/4, bar length l_p, tension-only (docs/theory/fem.md#net-triangle), its name
+/// appended to `group_names` (after the cable groups). Returns per mesh panel its triangle
+/// index.
+fn add_net_triangles(
+    file: &str,
+    mesh: &Mesh,
+    b: &mut ModelBuilder,
+    group_names: &mut Vec<String>,
+) -> Result<Vec<Option<usize>>> {
+    let mut group: HashMap<u32, NetGroupId> = HashMap::new();
+    let mut out = vec![None; mesh.panels.len()];
+    for (pi, p) in mesh.panels.iter().enumerate() {
+        let (Some(uv), PanelNodes::Tri(nodes)) = (p.uv, p.nodes) else {
+            continue;
+        };
+        let obj = &mesh.objects[p.object as usize];
+        let Some(net) = &obj.net else { continue };
+        let id = match group.get(&p.object) {
+            Some(&id) => id,
+            None => {
+                let area = std::f64::consts::FRAC_PI_4 * net.twine_diameter.powi(2);
+                let section = NetTriangleSection::new(
+                    net.youngs_modulus * area,
+                    net.half_mesh,
+                    net.density * area,
+                )
+                .with_compression_ratio(aqua_mesh::mesh::TENSION_ONLY);
+                let name = format!("{}/net_triangles", obj.name);
+                let id = b
+                    .add_net_triangle_group(&name, section)
+                    .map_err(|e| SimError::at(format!("{file}: {name}"), e))?;
+                group.insert(p.object, id);
+                group_names.push(name);
+                id
+            }
+        };
+        out[pi] = Some(
+            b.add_net_triangle(id, nodes, uv)
+                .map_err(|e| SimError::at(format!("{file}: {}: net triangle", obj.name), e))?,
+        );
+    }
+    Ok(out)
 }
 
 /// The `[[group]]` entry for a mesh group: "object/group" first, then "group".

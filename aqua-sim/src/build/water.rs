@@ -16,8 +16,8 @@ use aqua_hydro::assembly::{
     LineElement as HydroLine, NetPanel, PanelNodes as HydroPanelNodes, PointElement, WakeGroup,
 };
 use aqua_hydro::{
-    CageWake, LineProps, MorisonModel, MorisonModelId, NetProps, ScreenModel, WakeModelId,
-    WakeSpec, WakeUpdate,
+    CageWake, LineProps, MorisonModel, MorisonModelId, NetProps, PointProps, PointShape,
+    ScreenModel, TwineMap, WakeModelId, WakeSpec, WakeUpdate,
 };
 use aqua_mesh::{Mesh, NetGrouping, ObjectKind, PanelNodes, Role, Section};
 use std::collections::{HashMap, HashSet};
@@ -75,6 +75,8 @@ pub(super) fn build_water_loads(
     wake_cages: &HashSet<String>,
 ) -> Result<WaterLoadElements> {
     let (wake_groups, wake_index, mut nets_out) = wake_groups(scene, mesh, nets)?;
+    let mut points = points;
+    points.extend(twine_volumes(mesh));
     // Every copy of a participating cage (docs/theory/hydrodynamics.md#cage-to-cage-wake).
     let mut members: Vec<usize> = wake_index
         .iter()
@@ -181,6 +183,14 @@ fn screen_panels(
             nets_out[w].panels.push(pi);
         }
         if hydro.drag != NetDrag::Screen {
+            if p.uv.is_some() {
+                return Err(SimError::input(format!(
+                    "{file}: {}: net.drag = \"morison\" puts the drag on numerical twines, \
+                     which net.element = \"triangle\" has none of; use net.drag = \"screen\" \
+                     or net.element = \"cable\"",
+                    obj.name
+                )));
+            }
             continue;
         }
         let model = ScreenModel::new(hydro.screen_model, hydro.cd, hydro.cl, hydro.cyl_cd)
@@ -196,6 +206,15 @@ fn screen_panels(
                 twine_diameter: net.twine_diameter,
             },
             wake_group: wg,
+            twines: match p.uv {
+                Some(uv) => Some(TwineMap::new(uv).ok_or_else(|| {
+                    SimError::input(format!(
+                        "{file}: {}: net triangle {pi} has no area in mesh coordinates",
+                        obj.name
+                    ))
+                })?),
+                None => None,
+            },
         });
         panel_loaded[pi] = true;
     }
@@ -310,4 +329,51 @@ fn line_props(
         froude_krylov: h.froude_krylov.unwrap_or(true),
         knot_correction: h.knot_correction.unwrap_or(knot_default),
     })
+}
+
+/// The twines of net triangles as point volumes on their nodes: each triangle holds A_uv U bars
+/// and A_uv V bars of length l_p, volume 2·A_uv·l_p·πd²/4, a third to each corner, wetted over
+/// half the mean length of the node's triangle edges, with C_a = 1
+/// (docs/theory/hydrodynamics.md#net-triangle-screen).
+fn twine_volumes(mesh: &Mesh) -> Vec<PointElement> {
+    let n = mesh.nodes.len();
+    let mut volume = vec![0.0; n];
+    let mut edges = vec![(0.0, 0usize); n];
+    for p in &mesh.panels {
+        let (Some(uv), PanelNodes::Tri(nodes)) = (p.uv, p.nodes) else {
+            continue;
+        };
+        let Some(net) = &mesh.objects[p.object as usize].net else {
+            continue;
+        };
+        let a_uv = 0.5
+            * ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
+                - (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1]))
+                .abs();
+        let d = net.twine_diameter;
+        let v = 2.0 * a_uv * net.half_mesh * std::f64::consts::FRAC_PI_4 * d * d;
+        for k in 0..3 {
+            let (i, j) = (nodes[k], nodes[(k + 1) % 3]);
+            volume[i] += v / 3.0;
+            let l = (mesh.nodes[j] - mesh.nodes[i]).norm();
+            for m in [i, j] {
+                edges[m].0 += l;
+                edges[m].1 += 1;
+            }
+        }
+    }
+    (0..n)
+        .filter(|&i| volume[i] > 0.0)
+        .map(|i| PointElement {
+            node: i,
+            props: PointProps {
+                volume: volume[i],
+                shape: PointShape::Prism {
+                    height: 0.5 * edges[i].0 / edges[i].1 as f64,
+                },
+                drag_area: 0.0,
+                added_mass: 1.0,
+            },
+        })
+        .collect()
 }
