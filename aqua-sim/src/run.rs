@@ -167,6 +167,21 @@ pub fn water_loads(prep: &Prepared, phase: Phase) -> Result<(WaterLoads, Vec<Dia
 impl<'p> Simulation<'p> {
     /// Sets up the water loads of a prepared scene.
     pub fn new(prep: &'p Prepared) -> Result<Self> {
+        if let Some(p) = prep
+            .scene
+            .prescribed
+            .iter()
+            .find(|p| p.value.motion == crate::scene::MotionKind::Coupled)
+        {
+            return Err(SimError::input(format!(
+                "{}: line {}: [[prescribed]] nodes = \"{}\": motion = \"coupled\" is driven \
+                 step by step from Python (aqua.Coupling); a run needs motion = \"constant\", \
+                 \"ramp\", \"sine\" or \"table\"",
+                prep.scene.path.display(),
+                p.line,
+                p.value.nodes
+            )));
+        }
         let (loads, diagnostics) = water_loads(prep, Phase::Static)?;
         let volume0 = total_volume(&prep.built, prep.built.model.nodes());
         Ok(Self {

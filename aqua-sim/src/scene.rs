@@ -271,6 +271,9 @@ pub enum MotionKind {
     Sine,
     /// Table of t, dx, dy, dz (natural cubic spline).
     Table,
+    /// Driven from outside, step by step, by a coupling (`aqua.Coupling`); no other key.
+    /// `aqua run` refuses it; `aqua check` holds the nodes at their as-built place.
+    Coupled,
 }
 
 /// `[[prescribed]]`.

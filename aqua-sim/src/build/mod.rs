@@ -186,6 +186,7 @@ pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
         nets: net_nodes(&mesh),
     };
     diagnostics.extend(design.as_built(&mesh.nodes));
+    diagnostics.extend(crate::design::coarse_nets(&mesh));
     diagnostics.extend(crate::design::sinker_tubes(
         &mesh,
         &st.sections,

@@ -434,6 +434,25 @@ fn motion(p: &PrescribedSpec) -> std::result::Result<Motion, MotionError> {
         })
     };
     let m = match p.motion {
+        // Held at the as-built place until a coupling drives it (aqua-sim run refuses it).
+        MotionKind::Coupled => {
+            let given = [
+                ("offset", p.offset.is_some()),
+                ("amplitude", p.amplitude.is_some()),
+                ("mean", p.mean.is_some()),
+                ("period", p.period.is_some()),
+                ("phase", p.phase != 0.0),
+                ("ramp_time", p.ramp_time.is_some()),
+                ("table", p.table.is_some()),
+            ];
+            if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(missing(&format!(
+                    "{key} is not used by motion = \"coupled\" (the coupling gives the \
+                     motion); remove it"
+                )));
+            }
+            Motion::Constant([0.0; 3])
+        }
         MotionKind::Constant => Motion::Constant(need3(p.offset, "offset")?),
         MotionKind::Ramp => Motion::Ramp {
             target: need3(p.offset, "offset")?,
