@@ -78,7 +78,10 @@ pub struct Coupling {
     tx: Option<Sender<Request>>,
     rx: Receiver<Reply>,
     worker: Option<JoinHandle<()>>,
-    time: f64,
+    /// Coupling steps taken.
+    steps: u64,
+    /// The coupling step, fixed by the first call [s].
+    dt: Option<f64>,
     initialised: bool,
 }
 
@@ -126,7 +129,8 @@ impl Coupling {
             tx: Some(tx),
             rx,
             worker: Some(worker),
-            time: 0.0,
+            steps: 0,
+            dt: None,
             initialised: false,
         })
     }
@@ -150,9 +154,11 @@ impl Coupling {
             })
     }
 
-    /// The model time [s].
+    /// The model time [s]: the steps taken times the coupling step, the same product the
+    /// solver lands on (a running sum of the steps would drift from it in its last bits;
+    /// docs/theory/fem.md#coupling).
     pub fn time(&self) -> f64 {
-        self.time
+        self.dt.map_or(0.0, |dt| self.steps as f64 * dt)
     }
 
     fn ask(&self, req: Request) -> Result<Reply> {
@@ -193,13 +199,24 @@ impl Coupling {
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(SimError::Coupling(format!("dt = {dt}: a step > 0 s")));
         }
-        if (t - self.time).abs() > 1e-9 * dt.max(1e-300) + 1e-12 * t.abs() {
+        let now = self.time();
+        if (t - now).abs() > 1e-9 * dt.max(1e-300) + 1e-12 * t.abs() {
             return Err(SimError::Coupling(format!(
-                "step from t = {t} s, but the model is at t = {} s",
-                self.time
+                "step from t = {t} s, but the model is at t = {now} s"
             )));
         }
-        let t1 = self.time + dt;
+        let dt = match self.dt {
+            None => dt,
+            Some(fixed) if (dt - fixed).abs() <= 1e-12 * fixed => fixed,
+            Some(fixed) => {
+                return Err(SimError::Coupling(format!(
+                    "dt = {dt} s: a coupling keeps the step of its first call ({fixed} s)"
+                )));
+            }
+        };
+        // The end of the step is the (k + 1)-th multiple of Δt, the time the solver lands on
+        // exactly: the motion's end keyframe and the solver's clock are the same number.
+        let t1 = (self.steps + 1) as f64 * dt;
         let mut given = vec![false; self.points.len()];
         for (i, target) in targets {
             self.set_target(*i, target, t1, dt)?;
@@ -214,7 +231,8 @@ impl Coupling {
             self.set_target(i, &hold, t1, dt)?;
         }
         let f = self.forces(Request::Step { t1, dt })?;
-        self.time = t1;
+        self.dt = Some(dt);
+        self.steps += 1;
         Ok(f)
     }
 
@@ -334,7 +352,6 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
     };
     let mut initial: Option<(State, Outputs)> = None;
     let mut solver: Option<Box<dyn Stepper + '_>> = None;
-    let mut dt_solver = 0.0;
     while let Ok(req) = rx.recv() {
         let reply = match req {
             Request::Init => {
@@ -372,18 +389,22 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
                     let integ = coupled_integrator(&prep, dt);
                     let init = initial.as_ref().map(|s| &s.0);
                     solver = Some(start_integrator(model, &integ, init, &mut loads)?);
-                    dt_solver = dt;
-                } else if (dt - dt_solver).abs() > 1e-12 * dt_solver {
-                    return Err(SimError::Coupling(format!(
-                        "dt = {dt} s: a coupling keeps the step of its first call ({dt_solver} s)"
-                    )));
                 }
                 let s = solver
                     .as_mut()
                     .ok_or_else(|| SimError::Coupling("no solver".into()))?;
-                while s.state().t < t1 - 1e-9 * dt {
-                    s.step(&mut loads)
-                        .map_err(|e| SimError::Dynamic(Box::new(e)))?;
+                // Sub-steps (halvings, an explicit scheme's smaller step) until the solver
+                // lands on the next output time, which is t1: one coupling step, never two.
+                while !s
+                    .step(&mut loads)
+                    .map_err(|e| SimError::Dynamic(Box::new(e)))?
+                    .output_time
+                {}
+                let t = s.state().t;
+                if (t - t1).abs() > 1e-9 * dt {
+                    return Err(SimError::Coupling(format!(
+                        "the solver reached t = {t} s instead of the step's end t = {t1} s"
+                    )));
                 }
                 Ok(point_forces(&prep, s.outputs()))
             })()),
