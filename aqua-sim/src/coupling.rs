@@ -12,7 +12,8 @@
 //! The points are the `[[prescribed]]` entries, named by their `nodes` reference (e.g.
 //! `"chain/fairlead"`); positions are absolute [m]. Between two calls the solver sees the
 //! cubic Hermite motion through the given positions and velocities (velocities not given are
-//! the backward difference of the positions). The force on a point is the force of the
+//! the backward difference of the positions, and then the acceleration, if not given, is the
+//! backward difference of the velocities). The force on a point is the force of the
 //! structure on whatever holds it, F = −R (R the support reaction of the run outputs) [N].
 //!
 //! The solver runs on its own thread, which owns the model (the integrators borrow it), so
@@ -51,7 +52,8 @@ pub struct Target {
     pub position: Vec<[f64; 3]>,
     /// Velocities [m/s] (default: backward difference of the positions).
     pub velocity: Option<Vec<[f64; 3]>>,
-    /// Accelerations [m/s²] (default: from the cubic through positions and velocities).
+    /// Accelerations [m/s²] (default: the backward difference of the velocities when these
+    /// are not given either, else the cubic's through positions and velocities).
     pub acceleration: Option<Vec<[f64; 3]>>,
 }
 
@@ -263,13 +265,24 @@ impl Coupling {
         for k in 0..n {
             let x = target.position[k];
             let x0 = p.rest[k];
-            let (x_prev, _) = self.last[i][k];
+            let (x_prev, v_prev) = self.last[i][k];
             let v = target.velocity.as_ref().map(|v| v[k]).unwrap_or([
                 (x[0] - x_prev[0]) / dt,
                 (x[1] - x_prev[1]) / dt,
                 (x[2] - x_prev[2]) / dt,
             ]);
-            let a = target.acceleration.as_ref().map(|a| a[k]);
+            // Positions alone: the acceleration is the backward difference of the velocities.
+            // The cubic's end value through backward-difference velocities would be
+            // 2·(v_prev − v)/Δt, minus twice the motion's (docs/theory/fem.md#coupling).
+            let a = match (&target.acceleration, &target.velocity) {
+                (Some(a), _) => Some(a[k]),
+                (None, None) => Some([
+                    (v[0] - v_prev[0]) / dt,
+                    (v[1] - v_prev[1]) / dt,
+                    (v[2] - v_prev[2]) / dt,
+                ]),
+                (None, Some(_)) => None,
+            };
             let d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
             self.motions[i][k].set_target(t1, d, v, a);
             self.last[i][k] = (x, v);
