@@ -299,8 +299,10 @@ impl Results {
 /// `init()` (static equilibrium), `step(t, dt, {name: position})`, `close()`.
 ///
 /// Positions are absolute [m], one row per node of the group ((3,) for one node); a value may
-/// also be a dict with `position`, `velocity` and `acceleration`. The returned forces are the
-/// structure's forces on each group's nodes [N], {name: array (n_nodes, 3)}.
+/// also be a dict with `position`, `velocity` and `acceleration` (a missing velocity is the
+/// backward difference of the positions, and then a missing acceleration that of the
+/// velocities). The first step fixes dt; step k ends at `time` = k·dt. The returned forces are
+/// the structure's forces on each group's nodes [N], {name: array (n_nodes, 3)}.
 #[pyclass(module = "aqua", frozen)]
 struct Coupling {
     inner: Mutex<Option<aqua_sim::Coupling>>,

@@ -12,7 +12,8 @@
 //! The points are the `[[prescribed]]` entries, named by their `nodes` reference (e.g.
 //! `"chain/fairlead"`); positions are absolute [m]. Between two calls the solver sees the
 //! cubic Hermite motion through the given positions and velocities (velocities not given are
-//! the backward difference of the positions). The force on a point is the force of the
+//! the backward difference of the positions, and then the acceleration, if not given, is the
+//! backward difference of the velocities). The force on a point is the force of the
 //! structure on whatever holds it, F = −R (R the support reaction of the run outputs) [N].
 //!
 //! The solver runs on its own thread, which owns the model (the integrators borrow it), so
@@ -51,7 +52,8 @@ pub struct Target {
     pub position: Vec<[f64; 3]>,
     /// Velocities [m/s] (default: backward difference of the positions).
     pub velocity: Option<Vec<[f64; 3]>>,
-    /// Accelerations [m/s²] (default: from the cubic through positions and velocities).
+    /// Accelerations [m/s²] (default: the backward difference of the velocities when these
+    /// are not given either, else the cubic's through positions and velocities).
     pub acceleration: Option<Vec<[f64; 3]>>,
 }
 
@@ -78,7 +80,10 @@ pub struct Coupling {
     tx: Option<Sender<Request>>,
     rx: Receiver<Reply>,
     worker: Option<JoinHandle<()>>,
-    time: f64,
+    /// Coupling steps taken.
+    steps: u64,
+    /// The coupling step, fixed by the first call [s].
+    dt: Option<f64>,
     initialised: bool,
 }
 
@@ -126,7 +131,8 @@ impl Coupling {
             tx: Some(tx),
             rx,
             worker: Some(worker),
-            time: 0.0,
+            steps: 0,
+            dt: None,
             initialised: false,
         })
     }
@@ -150,9 +156,11 @@ impl Coupling {
             })
     }
 
-    /// The model time [s].
+    /// The model time [s]: the steps taken times the coupling step, the same product the
+    /// solver lands on (a running sum of the steps would drift from it in its last bits;
+    /// docs/theory/fem.md#coupling).
     pub fn time(&self) -> f64 {
-        self.time
+        self.dt.map_or(0.0, |dt| self.steps as f64 * dt)
     }
 
     fn ask(&self, req: Request) -> Result<Reply> {
@@ -193,13 +201,24 @@ impl Coupling {
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(SimError::Coupling(format!("dt = {dt}: a step > 0 s")));
         }
-        if (t - self.time).abs() > 1e-9 * dt.max(1e-300) + 1e-12 * t.abs() {
+        let now = self.time();
+        if (t - now).abs() > 1e-9 * dt.max(1e-300) + 1e-12 * t.abs() {
             return Err(SimError::Coupling(format!(
-                "step from t = {t} s, but the model is at t = {} s",
-                self.time
+                "step from t = {t} s, but the model is at t = {now} s"
             )));
         }
-        let t1 = self.time + dt;
+        let dt = match self.dt {
+            None => dt,
+            Some(fixed) if (dt - fixed).abs() <= 1e-12 * fixed => fixed,
+            Some(fixed) => {
+                return Err(SimError::Coupling(format!(
+                    "dt = {dt} s: a coupling keeps the step of its first call ({fixed} s)"
+                )));
+            }
+        };
+        // The end of the step is the (k + 1)-th multiple of Δt, the time the solver lands on
+        // exactly: the motion's end keyframe and the solver's clock are the same number.
+        let t1 = (self.steps + 1) as f64 * dt;
         let mut given = vec![false; self.points.len()];
         for (i, target) in targets {
             self.set_target(*i, target, t1, dt)?;
@@ -214,7 +233,8 @@ impl Coupling {
             self.set_target(i, &hold, t1, dt)?;
         }
         let f = self.forces(Request::Step { t1, dt })?;
-        self.time = t1;
+        self.dt = Some(dt);
+        self.steps += 1;
         Ok(f)
     }
 
@@ -245,13 +265,24 @@ impl Coupling {
         for k in 0..n {
             let x = target.position[k];
             let x0 = p.rest[k];
-            let (x_prev, _) = self.last[i][k];
+            let (x_prev, v_prev) = self.last[i][k];
             let v = target.velocity.as_ref().map(|v| v[k]).unwrap_or([
                 (x[0] - x_prev[0]) / dt,
                 (x[1] - x_prev[1]) / dt,
                 (x[2] - x_prev[2]) / dt,
             ]);
-            let a = target.acceleration.as_ref().map(|a| a[k]);
+            // Positions alone: the acceleration is the backward difference of the velocities.
+            // The cubic's end value through backward-difference velocities would be
+            // 2·(v_prev − v)/Δt, minus twice the motion's (docs/theory/fem.md#coupling).
+            let a = match (&target.acceleration, &target.velocity) {
+                (Some(a), _) => Some(a[k]),
+                (None, None) => Some([
+                    (v[0] - v_prev[0]) / dt,
+                    (v[1] - v_prev[1]) / dt,
+                    (v[2] - v_prev[2]) / dt,
+                ]),
+                (None, Some(_)) => None,
+            };
             let d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
             self.motions[i][k].set_target(t1, d, v, a);
             self.last[i][k] = (x, v);
@@ -334,7 +365,6 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
     };
     let mut initial: Option<(State, Outputs)> = None;
     let mut solver: Option<Box<dyn Stepper + '_>> = None;
-    let mut dt_solver = 0.0;
     while let Ok(req) = rx.recv() {
         let reply = match req {
             Request::Init => {
@@ -372,18 +402,22 @@ fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
                     let integ = coupled_integrator(&prep, dt);
                     let init = initial.as_ref().map(|s| &s.0);
                     solver = Some(start_integrator(model, &integ, init, &mut loads)?);
-                    dt_solver = dt;
-                } else if (dt - dt_solver).abs() > 1e-12 * dt_solver {
-                    return Err(SimError::Coupling(format!(
-                        "dt = {dt} s: a coupling keeps the step of its first call ({dt_solver} s)"
-                    )));
                 }
                 let s = solver
                     .as_mut()
                     .ok_or_else(|| SimError::Coupling("no solver".into()))?;
-                while s.state().t < t1 - 1e-9 * dt {
-                    s.step(&mut loads)
-                        .map_err(|e| SimError::Dynamic(Box::new(e)))?;
+                // Sub-steps (halvings, an explicit scheme's smaller step) until the solver
+                // lands on the next output time, which is t1: one coupling step, never two.
+                while !s
+                    .step(&mut loads)
+                    .map_err(|e| SimError::Dynamic(Box::new(e)))?
+                    .output_time
+                {}
+                let t = s.state().t;
+                if (t - t1).abs() > 1e-9 * dt {
+                    return Err(SimError::Coupling(format!(
+                        "the solver reached t = {t} s instead of the step's end t = {t1} s"
+                    )));
                 }
                 Ok(point_forces(&prep, s.outputs()))
             })()),
