@@ -43,19 +43,20 @@ fn a_coupled_group_needs_no_motion_keys_and_a_coupling_drives_it() {
     // `aqua check` builds it (the nodes held in place); a run refuses it and says why.
     let prep = aqua_sim::prepare_scene(scene("check", &text).unwrap(), Prescribed::AsScene)
         .expect("a coupled scene passes the check");
-    let e = aqua_sim::run::Simulation::new(&prep)
-        .err()
-        .expect("a run refuses it")
-        .to_string();
+    let Err(e) = aqua_sim::run::Simulation::new(&prep) else {
+        panic!("a run refuses a coupled motion")
+    };
+    let e = e.to_string();
     assert!(e.contains("coupled") && e.contains("aqua.Coupling"), "{e}");
 }
 
 #[test]
 fn a_coupled_group_with_a_motion_key_is_an_error_naming_it() {
     let text = chain("motion = \"coupled\"\noffset = [1.0, 0.0, 0.0]");
-    let e = aqua_sim::prepare_scene(scene("offset", &text).unwrap(), Prescribed::External)
-        .err()
-        .expect("offset is refused")
-        .to_string();
+    let Err(e) = aqua_sim::prepare_scene(scene("offset", &text).unwrap(), Prescribed::External)
+    else {
+        panic!("offset with a coupled motion is refused")
+    };
+    let e = e.to_string();
     assert!(e.contains("offset") && e.contains("coupled"), "{e}");
 }
