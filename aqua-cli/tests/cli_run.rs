@@ -649,7 +649,7 @@ const MOORED_BLOCKS: [&str; 11] = [
 ];
 
 #[test]
-fn multiblock_series_is_named_per_object_and_sums_to_the_single_grid() {
+fn multiblock_series_is_named_per_object_and_sums_to_the_mesh_geometry() {
     let dir = scratch("multiblock");
     let scene = moored_cage_scene(&dir);
     let out = dir.join("out");
@@ -676,9 +676,9 @@ fn multiblock_series_is_named_per_object_and_sums_to_the_single_grid() {
         .collect();
     assert!(groups.contains(&"cage/net_twines") && groups.contains(&"m_east/moorings"));
     assert_eq!(names["role_names"][0], "net_twines");
-    // The same model as one grid, written by `aqua mesh`, gives the counts the blocks must
-    // add up to.
-    let single = dir.join("single.vtu");
+    // The same model written by `aqua mesh --scene` is the run's reference geometry, block
+    // file by block file, and gives the counts the blocks of every step must add up to.
+    let single = dir.join("mesh.vtm");
     let (code, _, err) = aqua(&[
         "mesh",
         "--scene",
@@ -687,6 +687,20 @@ fn multiblock_series_is_named_per_object_and_sums_to_the_single_grid() {
         single.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
+    let reference = out.join("moored-cage_reference");
+    let mut files: Vec<_> = std::fs::read_dir(&reference)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), MOORED_BLOCKS.len());
+    for f in &files {
+        assert_eq!(
+            std::fs::read(dir.join("mesh").join(f)).ok(),
+            Some(std::fs::read(reference.join(f)).unwrap()),
+            "{f:?}: `aqua mesh --scene` differs from the run's reference step"
+        );
+    }
     let Some(python) = vtk_python() else { return };
     let expect = serde_json::json!({
         "blocks": MOORED_BLOCKS,
@@ -714,7 +728,7 @@ fn multiblock_series_is_named_per_object_and_sums_to_the_single_grid() {
     let mut wrong = expect.clone();
     wrong["points"] = serde_json::json!(272);
     let (ok, msg) = check_series(&python, &pvd, &wrong, Some(&single));
-    assert!(!ok && msg.contains("single grid"), "{msg}");
+    assert!(!ok && msg.contains("--single geometry"), "{msg}");
 }
 
 /// `pvbatch` (or `AQUA_PVBATCH`), or a printed note and `None`.

@@ -10,8 +10,8 @@ mod mesh {
     }
 
     #[test]
-    fn builders_write_vtu() {
-        let out = tmp("ssm.vtu");
+    fn builders_write_vtm() {
+        let out = tmp("ssm.vtm");
         let args = Args {
             kind: Some(Kind::Ssm),
             circumference: Some(120.0),
@@ -21,8 +21,16 @@ mod mesh {
             ..Default::default()
         };
         run(args).unwrap();
-        assert!(out.exists());
+        // The multiblock file lists the block files in the folder named after it.
+        let vtm = std::fs::read_to_string(&out).unwrap();
+        let blocks = tmp("ssm");
+        for kind in ["lines", "panels", "points"] {
+            let file = format!("cage0_{kind}.vtu");
+            assert!(vtm.contains(&format!("name=\"{kind}\" file=\"")), "{vtm}");
+            assert!(blocks.join(&file).is_file(), "{file} missing");
+        }
         std::fs::remove_file(&out).unwrap();
+        std::fs::remove_dir_all(&blocks).unwrap();
         let panel = Args {
             kind: Some(Kind::Panel),
             width: Some(1.0),
@@ -77,6 +85,11 @@ mod mesh {
             Args {
                 kind: Some(Kind::Cct),
                 out: Some(tmp("cage.vtk")),
+                ..Default::default()
+            },
+            Args {
+                kind: Some(Kind::Cct),
+                out: Some(tmp("cage.vtu")),
                 ..Default::default()
             },
             Args::default(),

@@ -1,5 +1,5 @@
 //! Builder and VTK writer speed.
-use aqua_mesh::{CageParams, CageType, VtkArrays, write_vtu};
+use aqua_mesh::{CageParams, CageType, write_geometry};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
@@ -18,9 +18,9 @@ fn bench(c: &mut Criterion) {
     let mesh = p.build().unwrap();
     let dir = std::env::temp_dir().join(format!("aqua-mesh-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("csm.vtu");
-    c.bench_function("write_vtu CSM el=0.5", |b| {
-        b.iter(|| write_vtu(&path, &mesh, None, &VtkArrays::default()).unwrap())
+    let path = dir.join("csm.vtm");
+    c.bench_function("write_geometry CSM el=0.5", |b| {
+        b.iter(|| write_geometry(&path, &mesh).unwrap())
     });
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -105,12 +105,12 @@ pub enum MeshError {
         #[source]
         source: std::io::Error,
     },
-    /// vtkio refused to serialise the data.
-    #[error("{}: VTK writer: {message}", path.display())]
-    VtkWrite {
-        /// The file.
+    /// A VTK output file name the writer cannot use.
+    #[error("{}: {message}", path.display())]
+    VtkPath {
+        /// The file or directory.
         path: PathBuf,
-        /// vtkio's message.
+        /// What is wrong and what would be valid.
         message: String,
     },
 }

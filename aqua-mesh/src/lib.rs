@@ -7,8 +7,8 @@
 //!   builder: cages on a square mooring grid with frame, bridles, buoys and anchor lines
 //!   ([`FarmParams`], #farm-grid).
 //! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
-//! * VTK export: XML `.vtu` unstructured grids and `.pvd` time collections ([`vtk`]), and the
-//!   run output, a multiblock series with one named block per object and kind ([`vtm`]).
+//! * VTK export ([`vtm`]): multiblock files with one named block per object and kind, as the
+//!   geometry of a mesh ([`write_geometry`]) or a run's time series ([`MultiblockSeries`]).
 //!
 //! # Governing relations
 //!
@@ -53,7 +53,6 @@ pub mod mesh;
 pub mod net;
 pub mod net_triangle;
 pub mod panel;
-pub mod vtk;
 pub mod vtm;
 
 pub use buoy::{BUOY_GROUP, buoy_node};
@@ -71,8 +70,9 @@ pub use mesh::{
 };
 pub use net::{MeshOrientation, NetElement, NetGrouping, NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};
-pub use vtk::{PvdWriter, VtkArray, VtkArrays, VtuSeries, write_vtu};
-pub use vtm::{BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays};
+pub use vtm::{
+    BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,
+};
 
 /// Build several cages, panels or lines into one mesh (objects appended in order).
 pub fn merge(meshes: impl IntoIterator<Item = Mesh>) -> Mesh {

@@ -903,20 +903,7 @@ impl MultiblockSeries {
         }
         let layout = BlockLayout::new(mesh);
         let names = NameTables::new(mesh, &layout);
-        let mut fixed = vec![0i32; mesh.nodes.len()];
-        for i in mesh.fixed_nodes() {
-            fixed[i] = 1;
-        }
-        let mut weight = vec![0.0; mesh.nodes.len()];
-        for w in &mesh.weights {
-            weight[w.node] += w.weight;
-        }
-        let nodes = NodeData { fixed, weight };
-        let templates = layout
-            .blocks
-            .iter()
-            .map(|b| BlockTemplate::new(mesh, b, &nodes))
-            .collect();
+        let templates = templates(mesh, &layout);
         let pvd_path = dir.join(format!("{stem}.pvd"));
         // A `.pvd` left by an earlier run lists files that were just removed.
         let _ = std::fs::remove_file(&pvd_path);
@@ -955,40 +942,6 @@ impl MultiblockSeries {
         &self.pvd.entries
     }
 
-    /// Writes the blocks into `<dir>/<name>/`, then `<name>.vtm` (temporary name + rename: a
-    /// `.vtm` under its final name is always complete). On an error, what was written of the
-    /// step is removed again.
-    fn write_vtm(
-        &self,
-        name: &str,
-        positions: &[Point3<f64>],
-        time: Option<f64>,
-        arrays: &StepArrays,
-    ) -> Result<PathBuf> {
-        let sub = self.dir.join(name);
-        let vtm = self.dir.join(format!("{name}.vtm"));
-        let result = (|| {
-            std::fs::create_dir_all(&sub).map_err(|source| MeshError::Io {
-                path: sub.clone(),
-                source,
-            })?;
-            for (b, tpl) in self.layout.blocks.iter().zip(&self.templates) {
-                // Written in place: the block is reachable only through the `.vtm`, which is
-                // written after it.
-                let path = sub.join(&b.file);
-                let text = tpl.render(b, positions, time, arrays);
-                std::fs::write(&path, text).map_err(|source| MeshError::Io { path, source })?;
-            }
-            write_replace(&vtm, vtm_text(&self.layout, name).as_bytes())
-        })();
-        if let Err(e) = result {
-            let _ = std::fs::remove_file(&vtm);
-            let _ = std::fs::remove_dir_all(&sub);
-            return Err(e);
-        }
-        Ok(vtm)
-    }
-
     fn check(&self, mesh: &Mesh, positions: &[Point3<f64>], arrays: &StepArrays) -> Result<()> {
         if positions.len() != mesh.nodes.len() {
             return Err(MeshError::VtkArray {
@@ -1021,7 +974,15 @@ impl MultiblockSeries {
     pub fn write_reference(&self, mesh: &Mesh) -> Result<PathBuf> {
         let empty = StepArrays::default();
         let name = format!("{}_reference", self.stem);
-        self.write_vtm(&name, &mesh.nodes, None, &empty)
+        write_vtm(
+            &self.dir,
+            &name,
+            &self.layout,
+            &self.templates,
+            &mesh.nodes,
+            None,
+            &empty,
+        )
     }
 
     /// Writes one step at `time` [s] (after the previous step) and lists it in the `.pvd`.
@@ -1051,9 +1012,134 @@ impl MultiblockSeries {
         }
         self.check(mesh, positions, arrays)?;
         let name = format!("{}_{:06}", self.stem, self.step);
-        let vtm = self.write_vtm(&name, positions, Some(time), arrays)?;
+        let vtm = write_vtm(
+            &self.dir,
+            &name,
+            &self.layout,
+            &self.templates,
+            positions,
+            Some(time),
+            arrays,
+        )?;
         self.pvd.add(time, format!("{name}.vtm"))?;
         self.step += 1;
         Ok(vtm)
     }
+}
+
+/// The fixed part of every block's file of `layout`, in layout order.
+fn templates(mesh: &Mesh, layout: &BlockLayout) -> Vec<BlockTemplate> {
+    let mut fixed = vec![0i32; mesh.nodes.len()];
+    for i in mesh.fixed_nodes() {
+        fixed[i] = 1;
+    }
+    let mut weight = vec![0.0; mesh.nodes.len()];
+    for w in &mesh.weights {
+        weight[w.node] += w.weight;
+    }
+    let nodes = NodeData { fixed, weight };
+    layout
+        .blocks
+        .iter()
+        .map(|b| BlockTemplate::new(mesh, b, &nodes))
+        .collect()
+}
+
+/// Writes the blocks into `<dir>/<name>/`, then `<dir>/<name>.vtm` (temporary name + rename: a
+/// `.vtm` under its final name is always complete). On an error, what was written is removed
+/// again. Returns the `.vtm` path.
+fn write_vtm(
+    dir: &Path,
+    name: &str,
+    layout: &BlockLayout,
+    templates: &[BlockTemplate],
+    positions: &[Point3<f64>],
+    time: Option<f64>,
+    arrays: &StepArrays,
+) -> Result<PathBuf> {
+    let sub = dir.join(name);
+    let vtm = dir.join(format!("{name}.vtm"));
+    let result = (|| {
+        std::fs::create_dir_all(&sub).map_err(|source| MeshError::Io {
+            path: sub.clone(),
+            source,
+        })?;
+        for (b, tpl) in layout.blocks.iter().zip(templates) {
+            // Written in place: the block is reachable only through the `.vtm`, which is
+            // written after it.
+            let path = sub.join(&b.file);
+            let text = tpl.render(b, positions, time, arrays);
+            std::fs::write(&path, text).map_err(|source| MeshError::Io { path, source })?;
+        }
+        write_replace(&vtm, vtm_text(layout, name).as_bytes())
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&vtm);
+        let _ = std::fs::remove_dir_all(&sub);
+        return Err(e);
+    }
+    Ok(vtm)
+}
+
+/// Writes the undeformed geometry of `mesh` as the multiblock file `path` (`<stem>.vtm`) with
+/// its block files in `<stem>/` next to it: the blocks, points and built-in arrays of a run's
+/// `<stem>_reference.vtm` ([`MultiblockSeries::write_reference`]), without a time. The
+/// directory `<stem>/` is replaced. Returns the `.vtm` path.
+pub fn write_geometry(path: &Path, mesh: &Mesh) -> Result<PathBuf> {
+    let bad = |path: &Path, m: &str| MeshError::VtkPath {
+        path: path.to_path_buf(),
+        message: m.to_string(),
+    };
+    if path.extension().and_then(|e| e.to_str()) != Some("vtm") {
+        return Err(bad(path, "a multiblock file name must end in .vtm"));
+    }
+    let name = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .filter(|s| !s.is_empty())
+        .ok_or_else(|| bad(path, "the file name needs a UTF-8 stem before .vtm"))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|source| MeshError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    // The block directory is cleared, which is only safe if it holds nothing but block files.
+    let sub = dir.join(name);
+    if sub.exists() {
+        let foreign = std::fs::read_dir(&sub)
+            .map_err(|source| MeshError::Io {
+                path: sub.clone(),
+                source,
+            })?
+            .flatten()
+            .any(|e| {
+                !(e.path().is_file()
+                    && e.path().extension().and_then(|x| x.to_str()) == Some("vtu"))
+            });
+        if foreign {
+            return Err(bad(
+                &sub,
+                "the block directory exists and holds files other than .vtu; \
+                 choose another .vtm name or remove the directory",
+            ));
+        }
+        std::fs::remove_dir_all(&sub).map_err(|source| MeshError::Io {
+            path: sub.clone(),
+            source,
+        })?;
+    }
+    let layout = BlockLayout::new(mesh);
+    let templates = templates(mesh, &layout);
+    write_vtm(
+        dir,
+        name,
+        &layout,
+        &templates,
+        &mesh.nodes,
+        None,
+        &StepArrays::default(),
+    )
 }

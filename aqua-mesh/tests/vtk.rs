@@ -1,10 +1,9 @@
-//! VTK export: written files read back by vtkio (in-process) and, when `AQUA_VTK_PYTHON` names a
-//! python with meshio (tests/python/requirements.txt), by the independent checker
-//! tests/python/check_vtk.py.
+//! VTK export: written files read back in-process (the XML and its base64 arrays decoded here)
+//! and, when `AQUA_VTK_PYTHON` names a python with meshio (tests/python/requirements.txt), by
+//! the independent checker tests/python/check_vtk.py.
 
-use aqua_mesh::vtk::VtuSeries;
-use aqua_mesh::{CageParams, CageType, PvdWriter, VtkArray, VtkArrays, write_vtu};
-use nalgebra::Vector3;
+use aqua_mesh::{BlockArray, CageParams, CageType, MultiblockSeries, StepArrays, write_geometry};
+use base64::Engine;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -19,65 +18,133 @@ fn cct() -> aqua_mesh::Mesh {
     CageParams::new(CageType::Cct).build().unwrap()
 }
 
-fn extra(m: &aqua_mesh::Mesh, t: f64) -> VtkArrays {
-    VtkArrays {
-        point: vec![VtkArray::vectors(
+fn extra(m: &aqua_mesh::Mesh, t: f64) -> StepArrays {
+    StepArrays {
+        point: vec![BlockArray::vectors(
             "displacement",
-            &vec![Vector3::new(t, 0.0, -0.5 * t); m.nodes.len()],
+            &vec![[t, 0.0, -0.5 * t]; m.nodes.len()],
         )],
-        cell: vec![VtkArray::scalar("tension", vec![100.0 * t; m.cell_count()])],
+        line: vec![BlockArray::scalar(
+            "tension",
+            vec![100.0 * t; m.lines.len()],
+        )],
+        panel: vec![],
     }
 }
 
+/// The `file="…"` attributes of a `.vtm`, in order.
+fn vtm_files(vtm: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(vtm).unwrap();
+    text.split("file=\"")
+        .skip(1)
+        .map(|s| s[..s.find('"').unwrap()].to_string())
+        .collect()
+}
+
+/// The bytes of the inline binary `DataArray` named `name` of a `.vtu` (after the UInt64 byte
+/// count, which is checked).
+fn data_array(vtu: &str, name: &str) -> Vec<u8> {
+    let at = vtu
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("array {name} missing"));
+    let body = &vtu[at..];
+    let body = &body[body.find('>').unwrap() + 1..];
+    let b64 = body[..body.find('<').unwrap()].trim();
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(b64)
+        .unwrap();
+    let n = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+    assert_eq!(n, bytes.len() - 8, "{name}: byte count");
+    bytes[8..].to_vec()
+}
+
 #[test]
-fn vtu_reads_back_with_vtkio() {
-    use vtkio::model::{CellType, DataSet, VertexNumbers};
+fn geometry_holds_every_node_and_cell_once_as_the_reference_step() {
     let m = cct();
-    let dir = tmpdir("vtkio");
-    let f = dir.join("cct.vtu");
-    write_vtu(&f, &m, None, &extra(&m, 1.0)).unwrap();
-    // Atomic write leaves no temporary file behind.
-    let names: Vec<_> = std::fs::read_dir(&dir)
+    let dir = tmpdir("geometry");
+    let vtm = dir.join("cct.vtm");
+    assert_eq!(write_geometry(&vtm, &m).unwrap(), vtm);
+    // The atomic write of the .vtm leaves no temporary file behind.
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
-        .map(|e| e.unwrap().file_name())
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
         .collect();
-    assert_eq!(names.len(), 1, "{names:?}");
-    let vtk = vtkio::Vtk::import(&f).unwrap();
-    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
-        panic!("not an unstructured grid")
-    };
-    let piece = pieces[0].load_piece_data(None).unwrap();
-    assert_eq!(piece.num_points(), 913);
-    let types = &piece.cells.types;
-    // CCT defaults: 1056 net + 48 ring + 48 links + 336 ropes + 48 ties + 48 bottom ring lines,
-    // 480 quads, 48 triangles (docs/theory/cages.md#worked-ssm-case).
-    let nl = 1056 + 96 + 336 + 48 + 48;
-    assert_eq!(types.iter().filter(|&&t| t == CellType::Line).count(), nl);
-    assert_eq!(types.iter().filter(|&&t| t == CellType::Quad).count(), 480);
-    assert_eq!(
-        types.iter().filter(|&&t| t == CellType::Triangle).count(),
-        48
-    );
-    let VertexNumbers::XML { connectivity, .. } = &piece.cells.cell_verts else {
-        panic!("expected XML connectivity")
-    };
-    assert_eq!(connectivity.len(), 2 * nl + 4 * 480 + 3 * 48);
-    let names: Vec<String> = piece
-        .data
-        .cell
-        .iter()
-        .map(|a| a.name().to_string())
-        .collect();
-    for n in [
-        "group_id",
-        "role_id",
-        "diameter",
-        "elastic_diameter",
-        "hydro_diameter",
-        "tension",
-    ] {
-        assert!(names.contains(&n.to_string()), "{n} missing in {names:?}");
+    names.sort();
+    assert_eq!(names, ["cct", "cct.vtm"]);
+    let (mut points, mut lines, mut quads, mut triangles, mut conn) = (0, 0, 0, 0, 0);
+    for f in vtm_files(&vtm) {
+        let text = std::fs::read_to_string(dir.join(&f)).unwrap();
+        let types = data_array(&text, "types");
+        let count = |t: u8| types.iter().filter(|&&x| x == t).count();
+        if f.ends_with("_points.vtu") {
+            assert_eq!(count(1), types.len());
+            points += types.len();
+            continue;
+        }
+        lines += count(3);
+        quads += count(9);
+        triangles += count(5);
+        conn += data_array(&text, "connectivity").len() / 8;
+        if f.ends_with("_lines.vtu") {
+            for a in [
+                "group_id",
+                "role_id",
+                "diameter",
+                "elastic_diameter",
+                "hydro_diameter",
+            ] {
+                assert!(
+                    text.contains(&format!("Name=\"{a}\"")),
+                    "{a} missing in {f}"
+                );
+            }
+        }
+        assert!(!text.contains("TimeValue"), "{f}: the geometry has no time");
     }
+    // CCT defaults: 913 nodes; 1056 net + 48 ring + 48 links + 336 ropes + 48 ties + 48 bottom
+    // ring lines, 480 quads, 48 triangles (docs/theory/cages.md#worked-ssm-case).
+    let nl = 1056 + 96 + 336 + 48 + 48;
+    assert_eq!(points, 913);
+    assert_eq!((lines, quads, triangles), (nl, 480, 48));
+    assert_eq!(conn, 2 * nl + 4 * 480 + 3 * 48);
+    // The same block files as a run's reference step of the same mesh.
+    let run = dir.join("run");
+    let s = MultiblockSeries::new(&run, "cct", &m).unwrap();
+    let reference = s.write_reference(&m).unwrap();
+    let ours = vtm_files(&vtm);
+    let theirs = vtm_files(&reference);
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert_eq!(
+            std::fs::read(dir.join(a)).unwrap(),
+            std::fs::read(run.join(b)).unwrap(),
+            "{a} differs from the reference step's {b}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn geometry_file_names_are_checked() {
+    let m = cct();
+    let dir = tmpdir("geometry-names");
+    let err = write_geometry(&dir.join("cct.vtu"), &m)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains(".vtm"), "{err}");
+    // A folder of the block files' name that holds other files is left alone.
+    std::fs::create_dir_all(dir.join("notes")).unwrap();
+    std::fs::write(dir.join("notes/keep.txt"), "keep").unwrap();
+    let err = write_geometry(&dir.join("notes.vtm"), &m)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("other than .vtu"), "{err}");
+    assert!(dir.join("notes/keep.txt").exists() && !dir.join("notes.vtm").exists());
+    // Writing again replaces the blocks of the earlier file.
+    write_geometry(&dir.join("cct.vtm"), &m).unwrap();
+    std::fs::write(dir.join("cct/stale.vtu"), "").unwrap();
+    write_geometry(&dir.join("cct.vtm"), &m).unwrap();
+    assert!(!dir.join("cct/stale.vtu").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -85,68 +152,34 @@ fn vtu_reads_back_with_vtkio() {
 fn bad_arrays_are_rejected() {
     let m = cct();
     let dir = tmpdir("badarr");
-    let f = dir.join("x.vtu");
+    let mut s = MultiblockSeries::new(&dir, "x", &m).unwrap();
     let mut e = extra(&m, 1.0);
-    e.cell[0].values[3] = f64::NAN;
-    let err = write_vtu(&f, &m, None, &e).unwrap_err().to_string();
+    let mut tension = vec![100.0; m.lines.len()];
+    tension[3] = f64::NAN;
+    e.line[0] = BlockArray::scalar("tension", tension);
+    let err = s.write_step(0.0, &m, &m.nodes, &e).unwrap_err().to_string();
     assert!(
         err.contains("tension") && err.contains("not finite"),
         "{err}"
     );
     let mut e = extra(&m, 1.0);
-    e.point[0].values.pop();
-    assert!(
-        write_vtu(&f, &m, None, &e)
-            .unwrap_err()
-            .to_string()
-            .contains("displacement")
-    );
-    let e = VtkArrays {
-        point: vec![VtkArray::scalar("fixed", vec![0.0; m.nodes.len()])],
-        cell: vec![],
+    e.point[0] = BlockArray::vectors("displacement", &vec![[0.0; 3]; m.nodes.len() - 1]);
+    let err = s.write_step(0.0, &m, &m.nodes, &e).unwrap_err().to_string();
+    assert!(err.contains("displacement"), "{err}");
+    let e = StepArrays {
+        point: vec![BlockArray::scalar("fixed", vec![0.0; m.nodes.len()])],
+        ..Default::default()
     };
-    assert!(
-        write_vtu(&f, &m, None, &e)
-            .unwrap_err()
-            .to_string()
-            .contains("already used")
-    );
-    assert!(!f.exists());
-    let mut pvd = PvdWriter::new(dir.join("s.pvd"));
-    assert!(pvd.add(0.0, &dir.join("missing.vtu")).is_err());
+    let err = s.write_step(0.0, &m, &m.nodes, &e).unwrap_err().to_string();
+    assert!(err.contains("already used"), "{err}");
+    // Nothing of a rejected step is written.
+    assert!(s.entries().is_empty());
+    assert!(!dir.join("x_000000.vtm").exists() && !dir.join("x_000000").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn pvd_lists_exactly_the_written_steps() {
-    let m = cct();
-    let dir = tmpdir("pvd");
-    let mut s = VtuSeries::new(&dir, "run").unwrap();
-    let times = [0.0, 0.5, 1.25];
-    for &t in &times {
-        let pos: Vec<_> = m
-            .nodes
-            .iter()
-            .map(|p| p + Vector3::new(t, 0.0, 0.0))
-            .collect();
-        s.write_step(t, &m, Some(&pos), &extra(&m, t)).unwrap();
-        // After every step the collection lists exactly the files written so far.
-        let text = std::fs::read_to_string(dir.join("run.pvd")).unwrap();
-        assert_eq!(text.matches("<DataSet").count(), s.pvd().entries().len());
-    }
-    assert!(s.write_step(1.0, &m, None, &VtkArrays::default()).is_err());
-    let entries = s.pvd().entries().to_vec();
-    assert_eq!(entries.len(), 3);
-    assert_eq!(entries[2].1, "run_000002.vtu");
-    // Removing a file and retaining existing entries rewrites the list.
-    let mut pvd = s.pvd().clone();
-    std::fs::remove_file(dir.join("run_000002.vtu")).unwrap();
-    pvd.retain_existing().unwrap();
-    assert_eq!(pvd.entries().len(), 2);
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// Writes a cage, a gmsh import and a 3-step series, then runs the python checker.
+/// Writes the geometry of a cage and of a gmsh import and a 3-step series, then runs the
+/// python checker (meshio reads every block file).
 #[test]
 fn independent_reader_python_meshio() {
     let Ok(python) = std::env::var("AQUA_VTK_PYTHON") else {
@@ -171,29 +204,32 @@ fn independent_reader_python_meshio() {
         );
         (out.status.success(), msg)
     };
-    let point_arrays = "object_id:1,copy_id:1,fixed:1,point_weight:1,displacement:3";
-    let cell_arrays = "group_id:1,role_id:1,object_id:1,copy_id:1,diameter:1,\
-                       elastic_diameter:1,hydro_diameter:1,solidity:1,tension:1";
+    let with_expect = |name: &str, expect: serde_json::Value| {
+        let ef = dir.join(format!("{name}.expect.json"));
+        std::fs::write(&ef, expect.to_string()).unwrap();
+        ef
+    };
 
     // SSM worked case (docs/theory/cages.md#worked-ssm-case): 1057 nodes; 1344 + 336 + 144 + 96
     // lines; 624 quads, 48 triangles.
     let mut p = CageParams::new(CageType::Ssm);
     p.circumference = Some(120.0);
     let m = p.build().unwrap();
-    let f = dir.join("ssm.vtu");
-    write_vtu(&f, &m, None, &extra(&m, 1.0)).unwrap();
-    let (ok, msg) = run(&[
-        f.to_str().unwrap(),
-        "--points",
-        "1057",
-        "--cells",
-        "line=1920,quad=624,triangle=48",
-        "--point-arrays",
-        point_arrays,
-        "--cell-arrays",
-        cell_arrays,
-    ]);
+    let f = write_geometry(&dir.join("ssm.vtm"), &m).unwrap();
+    let ef = with_expect(
+        "ssm",
+        serde_json::json!({
+            "points": 1057,
+            "cells": {"line": 1920, "quad": 624, "triangle": 48},
+            "point_arrays": {"node_id": 1, "object_id": 1, "copy_id": 1, "fixed": 1,
+                             "point_weight": 1},
+            "line_arrays": {"group_id": 1, "role_id": 1, "object_id": 1, "copy_id": 1,
+                            "diameter": 1, "elastic_diameter": 1, "hydro_diameter": 1},
+        }),
+    );
+    let (ok, msg) = run(&[f.to_str().unwrap(), "--expect", ef.to_str().unwrap()]);
     assert!(ok, "{msg}");
+    assert!(msg.contains("3 blocks read by meshio"), "{msg}");
 
     // A wrong expectation must fail (the checker really checks).
     let (ok, msg) = run(&[
@@ -209,8 +245,7 @@ fn independent_reader_python_meshio() {
         ..Default::default()
     })
     .unwrap();
-    let f = dir.join("gmsh.vtu");
-    write_vtu(&f, &g, None, &VtkArrays::default()).unwrap();
+    let f = write_geometry(&dir.join("gmsh.vtm"), &g).unwrap();
     let (ok, msg) = run(&[
         f.to_str().unwrap(),
         "--points",
@@ -221,20 +256,21 @@ fn independent_reader_python_meshio() {
     assert!(ok, "{msg}");
 
     // Time series with real time values, expectations through a JSON file.
-    let mut s = VtuSeries::new(dir.join("series"), "cct").unwrap();
     let m = cct();
+    let mut s = MultiblockSeries::new(dir.join("series"), "cct", &m).unwrap();
     for t in [0.0, 0.1, 0.35] {
-        s.write_step(t, &m, None, &extra(&m, t)).unwrap();
+        s.write_step(t, &m, &m.nodes, &extra(&m, t)).unwrap();
     }
-    let expect = serde_json::json!({
-        "points": 913,
-        "cells": {"line": 1056 + 96 + 336 + 48 + 48, "quad": 480, "triangle": 48},
-        "point_arrays": {"displacement": 3, "fixed": 1},
-        "cell_arrays": {"tension": 1, "role_id": 1},
-        "times": [0.0, 0.1, 0.35],
-    });
-    let ef = dir.join("expect.json");
-    std::fs::write(&ef, expect.to_string()).unwrap();
+    let ef = with_expect(
+        "series",
+        serde_json::json!({
+            "points": 913,
+            "cells": {"line": 1056 + 96 + 336 + 48 + 48, "quad": 480, "triangle": 48},
+            "point_arrays": {"displacement": 3, "fixed": 1},
+            "line_arrays": {"tension": 1, "role_id": 1},
+            "times": [0.0, 0.1, 0.35],
+        }),
+    );
     let pvd = dir.join("series/cct.pvd");
     let (ok, msg) = run(&[pvd.to_str().unwrap(), "--expect", ef.to_str().unwrap()]);
     assert!(ok, "{msg}");
@@ -246,7 +282,7 @@ fn independent_reader_python_meshio() {
 /// valid entry per step and rejects a time that does not increase.
 #[test]
 fn multiblock_series_names_objects_copies_and_kinds() {
-    use aqua_mesh::{BlockArray, BlockKind, MultiblockSeries, StepArrays};
+    use aqua_mesh::BlockKind;
     let mut p = CageParams::new(CageType::Cct);
     p.name = Some("pen".into());
     p.origins = Some(vec![[0.0, 0.0, 0.0], [100.0, 0.0, 0.0]]);
@@ -345,7 +381,6 @@ fn multiblock_series_names_objects_copies_and_kinds() {
 /// unique, and `block_objects` maps them back to the object names.
 #[test]
 fn block_names_are_names_paraview_keeps() {
-    use aqua_mesh::MultiblockSeries;
     let cage = |name: &str| {
         let mut p = CageParams::new(CageType::Cct);
         p.name = Some(name.into());

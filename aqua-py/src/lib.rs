@@ -13,7 +13,9 @@
 //! sim.close()
 //! ```
 //!
-//! Errors are `aqua.AquaError` with the message `aqua` prints after "error: ".
+//! Errors carry the message `aqua` prints after "error: ". Their class tells the cause:
+//! `aqua.InputError` for a mistake in the scene, `aqua.SolveError` for a solve that failed,
+//! both subclasses of `aqua.AquaError`, which the other failures (files, coupling calls) raise.
 
 use aqua_sim::coupling::{Forces, Target};
 use aqua_sim::files::RunFiles;
@@ -33,8 +35,35 @@ create_exception!(
     "An invalid scene or a failed computation; the message is the one `aqua` prints."
 );
 
+create_exception!(
+    aqua,
+    InputError,
+    AquaError,
+    "A mistake in the scene: a key, value or name that is not valid (`aqua` exits with 2)."
+);
+
+create_exception!(
+    aqua,
+    SolveError,
+    AquaError,
+    "A solve that failed: static equilibrium not reached, a time integrator that could not \
+     start, a dynamic step that failed, or values that are not finite."
+);
+
+/// The Python exception for an aqua-sim error, chosen by its variant (not by its message).
 fn err(e: SimError) -> PyErr {
-    AquaError::new_err(e.chain())
+    let msg = e.chain();
+    match e {
+        SimError::Input(_) | SimError::Model { .. } => InputError::new_err(msg),
+        SimError::Static { .. }
+        | SimError::StartDynamic(..)
+        | SimError::Dynamic(_)
+        | SimError::NonFinite(_) => SolveError::new_err(msg),
+        SimError::Io { .. }
+        | SimError::Plot { .. }
+        | SimError::Output(_)
+        | SimError::Coupling(_) => AquaError::new_err(msg),
+    }
 }
 
 /// A scene: the TOML file's contents, type-checked.
@@ -60,9 +89,9 @@ impl Scene {
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyDict>, path: &str) -> PyResult<Self> {
         let json: String = py.import("json")?.call_method1("dumps", (d,))?.extract()?;
         let value: serde_json::Value =
-            serde_json::from_str(&json).map_err(|e| AquaError::new_err(format!("{path}: {e}")))?;
+            serde_json::from_str(&json).map_err(|e| InputError::new_err(format!("{path}: {e}")))?;
         let text = toml::to_string(&value)
-            .map_err(|e| AquaError::new_err(format!("{path}: not a scene table: {e}")))?;
+            .map_err(|e| InputError::new_err(format!("{path}: not a scene table: {e}")))?;
         aqua_sim::scene::parse_scene(&text, Path::new(path))
             .map(|inner| Self { inner })
             .map_err(err)
@@ -471,6 +500,8 @@ fn aqua_py(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Results>()?;
     m.add_class::<Coupling>()?;
     m.add("AquaError", m.py().get_type::<AquaError>())?;
+    m.add("InputError", m.py().get_type::<InputError>())?;
+    m.add("SolveError", m.py().get_type::<SolveError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

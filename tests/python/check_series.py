@@ -2,7 +2,7 @@
 """Independent check of an `aqua run` output directory with the VTK Python package.
 
 Usage:
-  check_series.py RUN.pvd [--expect EXPECT.json] [--single MESH.vtu]
+  check_series.py RUN.pvd [--expect EXPECT.json] [--single MESH.vtm]
 
 Reads the `.pvd` (XML), every `.vtm` it lists and the undeformed `<stem>_reference.vtm` with
 VTK's own readers (vtkXMLMultiBlockDataReader, not the Rust code that wrote them) and checks:
@@ -21,9 +21,9 @@ VTK's own readers (vtkXMLMultiBlockDataReader, not the Rust code that wrote them
 * the `points` blocks partition the nodes (`node_id` 0..N-1 once each) and the lines/panels
   blocks hold every element once (`element_id`, `panel_id`);
 * `point_sums` {array: value}: the sum of a point array over the `points` blocks;
-* the sums over blocks equal the single-grid counts: `points`, `cells` {line, triangle, quad}
-  from EXPECT.json, and/or those of `--single MESH.vtu` (the same model written as one grid by
-  `aqua mesh --scene ... --out`);
+* the sums over blocks equal the model's counts: `points`, `cells` {line, triangle, quad}
+  from EXPECT.json, and/or those of `--single MESH.vtm` (the same model's geometry written by
+  `aqua mesh --scene ... --out`: points of its `points` blocks, cells of the others);
 * reference points + `displacement` = the step's points.
 
 Exit status 0 when every check passes, 1 otherwise (failures listed on stderr).
@@ -38,7 +38,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkMultiBlockDataSet
-from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader, vtkXMLUnstructuredGridReader
+from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader
 
 VTK_TYPES = {1: "vertex", 3: "line", 5: "triangle", 9: "quad"}
 
@@ -200,7 +200,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("pvd")
     ap.add_argument("--expect")
-    ap.add_argument("--single", help="the same model as one .vtu grid")
+    ap.add_argument("--single", help="the same model's geometry (.vtm of aqua mesh)")
     args = ap.parse_args()
     exp = {}
     if args.expect:
@@ -208,15 +208,17 @@ def main():
             exp = json.load(f)
     fails = []
     if args.single:
-        r = vtkXMLUnstructuredGridReader()
-        r.SetFileName(args.single)
-        r.Update()
-        g = r.GetOutput()
-        single = {"points": g.GetNumberOfPoints(), "cells": cell_counts(g)}
-        print(f"{args.single}: one grid, {single['points']} points, cells {single['cells']}")
+        single = {"points": 0, "cells": {}}
+        for name, g in read_vtm(args.single):
+            if name.rsplit("/", 1)[-1] == "points":
+                single["points"] += g.GetNumberOfPoints()
+                continue
+            for k, v in cell_counts(g).items():
+                single["cells"][k] = single["cells"].get(k, 0) + v
+        print(f"{args.single}: the model, {single['points']} points, cells {single['cells']}")
         for k in ("points", "cells"):
             if k in exp and exp[k] != single[k]:
-                fails.append(f"expectation {k} {exp[k]} differs from the single grid {single[k]}")
+                fails.append(f"expectation {k} {exp[k]} differs from the --single geometry {single[k]}")
             exp[k] = single[k]
     try:
         root = ET.parse(args.pvd).getroot()

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Independent check of aqua's VTK output (.vtu / .pvd) with meshio.
+"""Independent check of aqua's VTK output (.vtu / .vtm / .pvd) with meshio.
 
 Usage:
   check_vtk.py FILE [--expect EXPECT.json] [--points N] [--cells line=N,triangle=N,quad=N]
                [--point-arrays name:ncomp,...] [--cell-arrays name:ncomp,...] [--times t0,t1,...]
 
-FILE is a .vtu (checked directly), a .vtm (a multiblock step of `aqua run`: every block .vtu it
-lists is read) or a .pvd (every listed file is checked, and the time values are compared with
+FILE is a .vtu (checked directly), a .vtm (a multiblock step of `aqua run`, or the geometry of
+`aqua mesh --out`: every block .vtu it lists is read) or a .pvd (every listed file is checked, and the time values are compared with
 --times). For a .vtm, "points" and "cells" are the sums over its blocks (points over the
 `points` datasets, cells over `lines` and `panels`), "point_arrays" are checked in every block,
 "line_arrays" {name: ncomp} in the `lines` blocks, and the field data `TimeValue` must equal

@@ -157,6 +157,34 @@ def test_an_invalid_scene_raises_with_the_cli_message(tmp_path, case, text):
     assert str(e.value).strip() == message
 
 
+def test_a_bad_key_raises_input_error_as_the_cli_exits_with_2(tmp_path):
+    p = tmp_path / "key.toml"
+    p.write_text("[sea]\ndepth = 50\ndepht = 3\n")
+    assert aqua_cli("check", str(p)).returncode == 2
+    with pytest.raises(aqua.InputError, match="depht") as e:
+        aqua.Scene.load(str(p))
+    assert isinstance(e.value, aqua.AquaError) and not isinstance(e.value, aqua.SolveError)
+    with pytest.raises(aqua.InputError, match="depht"):
+        aqua.Scene.from_dict({"sea": {"depth": 50, "depht": 3}})
+
+
+def test_a_static_solve_that_cannot_converge_raises_solve_error(tmp_path):
+    # One Newton iteration for the whole load, no smaller increments: the chain's catenary is
+    # not reached, a failed computation (the binary exits with 1, not 2).
+    text = CHAIN.read_text().replace(
+        'kind = "static+dynamic"',
+        'kind = "static"\n\n[analysis.static]\nmax_iter = 1\nmin_load_step = 1.0',
+    )
+    p = tmp_path / "stuck.toml"
+    p.write_text(text)
+    r = aqua_cli("run", str(p), "--out", str(tmp_path / "cli"), "--quiet")
+    assert r.returncode == 1, r.stderr
+    assert "static equilibrium failed" in r.stderr
+    with pytest.raises(aqua.SolveError, match="static equilibrium failed") as e:
+        aqua.Scene.load(str(p)).run()
+    assert isinstance(e.value, aqua.AquaError) and not isinstance(e.value, aqua.InputError)
+
+
 def test_scene_from_dict_is_the_same_scene():
     tomllib = pytest.importorskip("tomllib")
     with open(CHAIN, "rb") as f:

@@ -1,9 +1,12 @@
 //! `aqua mesh`: build a cage, panel or line (or import a gmsh mesh), report it, write VTK.
 //!
 //! ```text
-//! aqua mesh ssm --circumference 120 --depth 15 --cone-depth 3 --element-length 2.5 --out cage.vtu
-//! aqua mesh --from net.msh --out net.vtu [--json]
+//! aqua mesh ssm --circumference 120 --depth 15 --cone-depth 3 --element-length 2.5 --out cage.vtm
+//! aqua mesh --from net.msh --out net.vtm [--json]
 //! ```
+//!
+//! `--out` writes the multiblock geometry of a run's `<scene>_reference.vtm`
+//! ([`aqua_mesh::write_geometry`]): `cage.vtm` and its blocks in `cage/`.
 //!
 //! Prints counts per group, λ and the structural, elastic and hydrodynamic diameters
 //! (docs/theory/cages.md#mesh-grouping); `--json` prints the same as JSON.
@@ -12,7 +15,7 @@ use crate::InputError;
 use anyhow::Context;
 use aqua_mesh::{
     CageParams, CageType, Fairlead, GmshParams, LineParams, LineShape, Mesh, MeshError, PanelFixed,
-    PanelParams, VtkArrays,
+    PanelParams,
 };
 use std::path::{Path, PathBuf};
 
@@ -49,7 +52,8 @@ pub struct Args {
     /// Build the whole structure of a scene file (its cages, panels, meshes and lines).
     #[arg(long, conflicts_with_all = ["kind", "from"])]
     pub scene: Option<PathBuf>,
-    /// Write the mesh to this XML .vtu file.
+    /// Write the mesh to this VTK multiblock .vtm file (its blocks go in the folder of the
+    /// same name next to it), as a run's reference geometry.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Print the report as JSON.
@@ -296,7 +300,7 @@ pub fn cage_params(args: &Args, kind: CageType) -> CageParams {
 }
 
 /// Build a cage from its parameter struct (e.g. a scene's `[[cage]]` table), print the report
-/// and optionally write `out` (.vtu). This is what `aqua mesh <type>` runs.
+/// and optionally write `out` (.vtm). This is what `aqua mesh <type>` runs.
 pub fn run_cage(params: &CageParams, out: Option<&Path>, json: bool) -> anyhow::Result<()> {
     let mesh = params.build().map_err(input)?;
     report(&mesh, out, json)
@@ -316,14 +320,15 @@ pub fn report_with(
     notices: bool,
 ) -> anyhow::Result<()> {
     if let Some(path) = out {
-        if path.extension().and_then(|e| e.to_str()) != Some("vtu") {
+        if path.extension().and_then(|e| e.to_str()) != Some("vtm") {
             return Err(InputError::new(format!(
-                "--out {}: the mesh is written as XML VTK unstructured grid; use a .vtu file name",
+                "--out {}: the mesh is written as a VTK multiblock (a .vtm file and a folder of \
+                 .vtu blocks, as a run's reference geometry); use a .vtm file name",
                 path.display()
             ))
             .into());
         }
-        aqua_mesh::write_vtu(path, mesh, None, &VtkArrays::default())
+        aqua_mesh::write_geometry(path, mesh)
             .with_context(|| format!("writing {}", path.display()))?;
     }
     let summary = mesh.summary();
