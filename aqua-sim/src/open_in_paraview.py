@@ -183,16 +183,7 @@ def main(argv):
     lut.RescaleTransferFunction(0.0, max(tmax, 1e-9))
     lut.AutomaticRescaleRangeMode = "Never"
     ld.SetScalarBarVisibility(view, True)
-    bar = GetScalarBar(lut, view)
-    bar.Title = "tension [N]"
-    bar.ComponentTitle = ""
-    bar.WindowLocation = "Any Location"
-    bar.Orientation = "Vertical"
-    bar.Position = [0.89, 0.1]
-    bar.ScalarBarLength = 0.6
-    bar.TitleFontSize = 16
-    bar.LabelFontSize = 14
-    bar.RangeLabelFormat = "%-#.3g"
+    bar = style_bar(GetScalarBar(lut, view), "tension [N]", 0.89)
     ld.LineWidth = 3.0
     ld.RenderLinesAsTubes = 1
 
@@ -210,16 +201,7 @@ def main(argv):
         plut.RescaleTransferFunction(0.0, max(umax, 1e-9))
         plut.AutomaticRescaleRangeMode = "Never"
         pd.SetScalarBarVisibility(view, True)
-        pbar = GetScalarBar(plut, view)
-        pbar.Title = "U twine tension [N]"
-        pbar.ComponentTitle = ""
-        pbar.WindowLocation = "Any Location"
-        pbar.Orientation = "Vertical"
-        pbar.Position = [0.03, 0.1]
-        pbar.ScalarBarLength = 0.6
-        pbar.TitleFontSize = 16
-        pbar.LabelFontSize = 14
-        pbar.RangeLabelFormat = "%-#.3g"
+        style_bar(GetScalarBar(plut, view), "U twine tension [N]", 0.03)
     else:
         pd.ColorArrayName = ["POINTS", ""]
         pd.AmbientColor = [0.55, 0.75, 0.9]
@@ -276,6 +258,21 @@ def main(argv):
     if opts["screenshot"]:
         SaveScreenshot(opts["screenshot"], view, ImageResolution=opts["size"])
     return view
+
+
+def style_bar(bar, title, x):
+    """A vertical colour bar with `title`, its left edge at `x` (fraction of the view), legible at
+    the fixed view size; returns it."""
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.WindowLocation = "Any Location"
+    bar.Orientation = "Vertical"
+    bar.Position = [x, 0.1]
+    bar.ScalarBarLength = 0.6
+    bar.TitleFontSize = 16
+    bar.LabelFontSize = 14
+    bar.RangeLabelFormat = "%-#.3g"
+    return bar
 
 
 def points_of(data):

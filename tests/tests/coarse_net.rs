@@ -3,10 +3,7 @@
 //! mesh (docs/theory/fem.md#mesh-resolution-warnings).
 
 mod common;
-use aqua_env::Phase;
-use aqua_fem::StaticControl;
-use aqua_sim::build::Prescribed;
-use common::{example, scratch};
+use common::{example, scratch, static_solve};
 
 /// The stability matrix's small cage (24 m circumference, 5 m + 1 m cone), static.
 fn small_cage(element_length: f64) -> String {
@@ -27,22 +24,12 @@ fn warns_and_volume(element_length: f64) -> (bool, f64) {
     let dir = scratch(&format!("coarse-net-{element_length}"));
     let path = dir.join("s.toml");
     std::fs::write(&path, small_cage(element_length)).unwrap();
-    let prep =
-        aqua_sim::prepare_scene(aqua_sim::read_scene(&path).unwrap(), Prescribed::AsScene).unwrap();
+    let (prep, _, sol) = static_solve(&path);
     let warns = prep
         .built
         .diagnostics
         .iter()
         .any(|d| d.code == "mesh/coarse-net");
-    let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
-    let sol = aqua_sim::solvers::static_equilibrium(
-        &prep.built.model,
-        &prep.built.mesh,
-        &mut loads,
-        &prep.plan.statics,
-        &mut |_| StaticControl::Continue,
-    )
-    .unwrap();
     let v0 = aqua_sim::post::total_volume(&prep.built, prep.built.model.nodes());
     (
         warns,

@@ -4,8 +4,6 @@
 //! different triangulations gives the same drag.
 
 mod common;
-use aqua_env::Phase;
-use aqua_fem::StaticControl;
 use aqua_sim::build::Prescribed;
 use common::*;
 use std::fmt::Write as _;
@@ -28,18 +26,7 @@ fn panel_scene(element: &str, element_length: f64) -> String {
 fn solve(dir: &Path, name: &str, text: &str) -> (Vec<[f64; 3]>, usize, [f64; 3]) {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
-    let scene = aqua_sim::read_scene(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let prep = aqua_sim::prepare_scene(scene, Prescribed::AsScene)
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
-    let sol = aqua_sim::solvers::static_equilibrium(
-        &prep.built.model,
-        &prep.built.mesh,
-        &mut loads,
-        &prep.plan.statics,
-        &mut |_| StaticControl::Continue,
-    )
-    .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let (prep, loads, sol) = static_solve(&path);
     let f = aqua_sim::post::net_force(&prep.built, &loads, &sol.state);
     (sol.state.x, sol.report.iterations, f)
 }

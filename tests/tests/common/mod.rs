@@ -58,3 +58,27 @@ pub fn summary(out: &Path) -> Vec<HashMap<String, f64>> {
 pub fn example(name: &str) -> String {
     std::fs::read_to_string(root().join("examples").join(name)).unwrap()
 }
+
+/// Reads and builds the scene file at `path` and solves its statics to the end; returns the
+/// prepared scene, its water loads (at the equilibrium) and the static solution.
+pub fn static_solve(
+    path: &Path,
+) -> (
+    aqua_sim::Prepared,
+    aqua_sim::provider::WaterLoads,
+    aqua_fem::StaticSolution,
+) {
+    let scene = aqua_sim::read_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let (mut loads, _) = aqua_sim::run::water_loads(&prep, aqua_env::Phase::Static).unwrap();
+    let sol = aqua_sim::solvers::static_equilibrium(
+        &prep.built.model,
+        &prep.built.mesh,
+        &mut loads,
+        &prep.plan.statics,
+        &mut |_| aqua_fem::StaticControl::Continue,
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    (prep, loads, sol)
+}
