@@ -114,6 +114,7 @@
 //! ```
 
 mod bending;
+mod builder;
 mod cable;
 mod dual;
 pub mod dynamics;
