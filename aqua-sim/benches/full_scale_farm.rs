@@ -31,7 +31,7 @@ const STEPS: usize = 3;
 
 fn farm() -> Prepared {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/farm-full-scale.toml");
-    aqua_sim::prepare_with(&path, &[]).expect("scene")
+    aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).expect("scene")
 }
 
 /// Resident memory of this process [bytes] (/proc/self/statm; 0 where there is none).

@@ -12,7 +12,7 @@
 //! `scaling` folder in the target directory). The criterion measurement is the per-step time of
 //! the 2-copy scene.
 
-use aqua_sim::{Observer, Override, Prepared, Simulation, prepare_with};
+use aqua_sim::{Observer, Override, PrepareOptions, Prepared, Simulation};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -35,7 +35,7 @@ fn prepare(file: &str, set: &[String]) -> Prepared {
     ];
     all.extend(set.iter().cloned());
     let set: Vec<Override> = all.iter().map(|s| s.parse().unwrap()).collect();
-    prepare_with(&example(file), &set).expect("scene")
+    aqua_sim::prepare(PrepareOptions::file(&example(file)).with_overrides(&set)).expect("scene")
 }
 
 /// One measured case.

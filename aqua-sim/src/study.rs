@@ -32,7 +32,7 @@ use crate::check::free_dofs;
 use crate::error::{Result, SimError};
 use crate::extremes::Extreme;
 use crate::overrides::{Override, check_path_syntax, parse_value};
-use crate::plan::prepare_with;
+use crate::plan::{PrepareOptions, prepare};
 use crate::post::SummaryRow;
 use crate::run::{Ending, Frame, Observer, Simulation};
 use crate::scene::{AnalysisKind, read_scene_with};
@@ -459,14 +459,15 @@ fn run_one(spec: &StudySpec, index: usize, setting: &[usize], obs: &dyn StudyObs
         errors: vec![],
         rows: None,
     };
-    let prep = match prepare_with(&spec.scene, &spec.overrides(setting)) {
-        Ok(p) => p,
-        Err(e) => {
-            run.reason = Some(e.chain());
-            run.wall_s = t0.elapsed().as_secs_f64();
-            return run;
-        }
-    };
+    let prep =
+        match prepare(PrepareOptions::file(&spec.scene).with_overrides(&spec.overrides(setting))) {
+            Ok(p) => p,
+            Err(e) => {
+                run.reason = Some(e.chain());
+                run.wall_s = t0.elapsed().as_secs_f64();
+                return run;
+            }
+        };
     run.dofs = free_dofs(&prep.built);
     let mut collector = Collector {
         rows: vec![],

@@ -10,7 +10,7 @@ use aqua_env::Phase;
 use aqua_fem::{StaticControl, StaticSolution};
 use aqua_sim::run::water_loads;
 use aqua_sim::solvers::static_equilibrium;
-use aqua_sim::{Prepared, prepare};
+use aqua_sim::{PrepareOptions, Prepared, prepare};
 use std::collections::HashMap;
 
 /// A solved farm: the scene, the equilibrium, the wall time [s] and the x-drag on each
@@ -31,7 +31,7 @@ fn solve(name: &str, edit: impl Fn(String) -> String) -> Solved {
     );
     let path = dir.join("farm.toml");
     std::fs::write(&path, edit(text)).unwrap();
-    let prep = prepare(&path).unwrap();
+    let prep = prepare(PrepareOptions::file(&path)).unwrap();
     let (mut loads, _) = water_loads(&prep, Phase::Static).unwrap();
     let t0 = std::time::Instant::now();
     let sol = static_equilibrium(
@@ -262,7 +262,7 @@ fn bad_farm_input_names_file_key_and_valid_values() {
     let check = |name: &str, edit: &dyn Fn(String) -> String, want: &[&str]| {
         let path = dir.join(format!("{name}.toml"));
         std::fs::write(&path, edit(example("farm.toml"))).unwrap();
-        let e = match prepare(&path) {
+        let e = match prepare(PrepareOptions::file(&path)) {
             Ok(_) => panic!("{name}: accepted"),
             Err(e) => e.chain(),
         };

@@ -192,7 +192,7 @@ fn has_line(msg: &str) -> bool {
 
 /// What `aqua check` says about a scene file: `None` if valid, else its error message.
 fn check(path: &Path) -> Option<String> {
-    let prep = match aqua_sim::prepare_with(path, &[]) {
+    let prep = match aqua_sim::prepare(aqua_sim::PrepareOptions::file(path)) {
         Ok(p) => p,
         Err(e) => return Some(e.chain()),
     };

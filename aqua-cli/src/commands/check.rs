@@ -19,7 +19,7 @@ pub struct Args {
 
 /// Run `aqua check`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let prep = aqua_sim::prepare_with(&a.scene, &a.set)?;
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&a.scene).with_overrides(&a.set))?;
     let report = aqua_sim::check::report(&prep)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
