@@ -21,7 +21,7 @@ use aqua_fem::{StaticControl, StaticProgress};
 use aqua_sim::check::free_dofs;
 use aqua_sim::plan::Prepared;
 use aqua_sim::run::water_loads;
-use aqua_sim::solvers::{start_integrator, static_equilibrium};
+use aqua_sim::{start_integrator, static_equilibrium};
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use std::path::Path;
 use std::time::{Duration, Instant};

@@ -13,7 +13,7 @@
 //! Also prints the bytes of one output step.
 
 use aqua_fem::{Outputs, State};
-use aqua_sim::files::RunFiles;
+use aqua_sim::RunFiles;
 use aqua_sim::{Frame, Observer, Override, PrepareOptions, Prepared, SummaryRow};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::{Path, PathBuf};

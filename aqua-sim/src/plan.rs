@@ -1,7 +1,7 @@
 //! The validated analysis of a scene — what `aqua check` reports and `aqua run` runs — and the
 //! one validation both go through ([`prepare`]).
 
-use crate::build::{Built, Prescribed, build_with};
+use crate::build::{Built, Prescribed, build};
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
@@ -142,7 +142,7 @@ pub fn prepare(options: PrepareOptions<'_>) -> Result<Prepared> {
 
 /// Builds and plans a scene already read.
 fn prepare_built(scene: Scene, prescribed: Prescribed) -> Result<Prepared> {
-    let built = build_with(&scene, prescribed)?;
+    let built = build(&scene, prescribed)?;
     let plan = Plan::of(&scene)?;
     Ok(Prepared { scene, built, plan })
 }

@@ -48,7 +48,7 @@ fn statics(text: &str) -> (Capture, usize) {
 fn node_of(text: &str, reference: &str) -> usize {
     let scene = parse_scene(text, Path::new("buoys-test.toml")).unwrap();
     let prep = prepare(PrepareOptions::scene(scene)).unwrap();
-    aqua_sim::build::resolve_ref(&prep.built.mesh, reference).unwrap()[0]
+    aqua_sim::resolve_ref(&prep.built.mesh, reference).unwrap()[0]
 }
 
 /// The spherical cap of height h of a sphere of radius r [m³].

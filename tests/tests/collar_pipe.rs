@@ -23,7 +23,7 @@ fn moored_collar_in_current_is_smooth_and_below_yield() {
     let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let built = &prep.built;
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
-    let sol = aqua_sim::solvers::static_equilibrium(
+    let sol = aqua_sim::static_equilibrium(
         &built.model,
         &built.mesh,
         &mut loads,

@@ -3,7 +3,7 @@
 //! and a coupling drives it like any other prescribed group.
 
 mod common;
-use aqua_sim::build::Prescribed;
+use aqua_sim::Prescribed;
 use aqua_sim::coupling::{Coupling, Target};
 use common::scratch;
 

@@ -9,7 +9,7 @@ use common::*;
 use aqua_env::Phase;
 use aqua_fem::{StaticControl, StaticSolution};
 use aqua_sim::run::water_loads;
-use aqua_sim::solvers::static_equilibrium;
+use aqua_sim::static_equilibrium;
 use aqua_sim::{PrepareOptions, Prepared, prepare};
 use std::collections::HashMap;
 
@@ -202,7 +202,7 @@ fn farm_in_a_current_along_a_grid_axis() {
     // heavily loaded ones ride up by a few decimetres (measured up to 0.45 m), held by the
     // buoyancy of their wet neighbouring elements. The plates hang clear of the seabed.
     let z = |r: &str| {
-        let n = aqua_sim::build::resolve_ref(&b.mesh, r).unwrap();
+        let n = aqua_sim::resolve_ref(&b.mesh, r).unwrap();
         let zs: Vec<f64> = n.iter().map(|&i| sol.state.x[i][2]).collect();
         (
             zs.iter().copied().fold(f64::INFINITY, f64::min),

@@ -8,7 +8,7 @@ mod common;
 use common::*;
 
 use aqua_mesh::Mesh;
-use aqua_sim::build::build_mesh;
+use aqua_sim::build_mesh;
 use aqua_sim::scene::parse_scene;
 use std::path::Path;
 

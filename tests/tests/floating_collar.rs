@@ -115,7 +115,7 @@ fn solve_scene(
     let c = prep.built.sea.constants();
     let (rho_w, g) = (c.density, c.gravity);
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static)?;
-    let sol = aqua_sim::solvers::static_equilibrium(
+    let sol = aqua_sim::static_equilibrium(
         &prep.built.model,
         &prep.built.mesh,
         &mut loads,

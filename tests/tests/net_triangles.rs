@@ -26,7 +26,7 @@ fn solve(dir: &Path, name: &str, text: &str) -> (Vec<[f64; 3]>, usize, [f64; 3])
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
     let (prep, loads, sol) = static_solve(&path);
-    let f = aqua_sim::post::net_force(&prep.built, &loads, &sol.state);
+    let f = aqua_sim::net_force(&prep.built, &loads, &sol.state);
     (sol.state.x, sol.report.iterations, f)
 }
 

@@ -31,7 +31,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     // `[[point]]` bodies are not builder weights: their totals on their own line.
     for (i, p) in prep.scene.point.iter().enumerate() {
         let v = &p.value;
-        let n = aqua_sim::build::resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
+        let n = aqua_sim::resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
         let k = n as f64;
         let g = prep.built.sea.constants().gravity;
         println!(
