@@ -1357,7 +1357,7 @@ fn collect_study_and_plot_report_a_peak_between_output_steps() {
     }
 
     // aqua plot: the line-end picture marks the peak, above the sampled curve.
-    let pictures = aqua_sim::plot::plot_run(&coarse).unwrap();
+    let pictures = aqua_study::plot::plot_run(&coarse).unwrap();
     let ends = pictures
         .iter()
         .find(|p| p.path.ends_with("line_ends.png"))

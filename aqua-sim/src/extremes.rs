@@ -217,7 +217,7 @@ impl Extremes {
         for (c, e) in self.table() {
             s.push_str(&format!(
                 "{},{},{},{},{}\n",
-                crate::study::csv_field(c),
+                crate::csv::csv_field(c),
                 e.max,
                 e.t_max,
                 e.min,

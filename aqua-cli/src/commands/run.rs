@@ -94,7 +94,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     // instead of being handed over by a thread that only waits (docs/theory/fem.md#threads).
     let ending = rayon::scope(|_| run_scene(&a.scene, &a.set, &a.out, a.quiet))?;
     if a.plot {
-        let pictures = aqua_sim::plot::plot_run(&a.out)?;
+        let pictures = aqua_study::plot::plot_run(&a.out)?;
         if !a.quiet {
             crate::commands::plot::print_pictures(&pictures);
         }

@@ -1,4 +1,4 @@
-//! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_sim::sweep`]), run on this
+//! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_study::sweep`]), run on this
 //! machine (`--local`, N child processes at a time on a rayon pool), or handed to GNU parallel
 //! (`--emit parallel`) or a Slurm job array (`--emit slurm`); `--case K` runs one case and is
 //! what every engine calls. Without a mode it lists the cases.
@@ -7,7 +7,7 @@ use crate::commands::run::run_scene;
 use crate::{InputError, interrupted};
 use anyhow::Context;
 use aqua_sim::Ending;
-use aqua_sim::sweep::{CaseRecord, Sweep};
+use aqua_study::sweep::{CaseRecord, Sweep};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};

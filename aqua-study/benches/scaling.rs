@@ -132,7 +132,7 @@ fn write(pts: &[Point]) {
                 "cage" => "reference cage, element length 5 / 2.5 / 1.25 m",
                 _ => "2 … 16 reference cages in one scene",
             };
-            aqua_sim::plot::Series::new(
+            aqua_study::plot::Series::new(
                 name,
                 pts.iter()
                     .filter(|p| p.family == *f)
@@ -142,7 +142,7 @@ fn write(pts: &[Point]) {
         })
         .collect();
     let png = dir.join("scaling.png");
-    aqua_sim::plot::loglog_chart(
+    aqua_study::plot::loglog_chart(
         &png,
         "Time per Newton iteration of a dynamic step (HHT-α, Δt = 0.1 s, 2 cores)",
         "unknowns (3 × nodes)",

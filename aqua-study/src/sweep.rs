@@ -23,11 +23,12 @@
 //! `case.json` (its parameters, status and wall time), so [`collect`] gives the same table
 //! whichever engine ran the cases.
 
-use crate::error::{Result, SimError};
-use crate::extremes::read_extremes;
-use crate::overrides::{Override, check_path_syntax};
 use crate::plot::SummaryTable;
-use crate::study::{csv_line, value_text};
+use crate::study::value_text;
+use aqua_sim::csv_line;
+use aqua_sim::extremes::read_extremes;
+use aqua_sim::overrides::{Override, check_path_syntax};
+use aqua_sim::{Result, SimError};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -108,7 +109,7 @@ impl Sweep {
             path: file.to_path_buf(),
             source,
         })?;
-        let text = crate::scene::read_text(&file)?;
+        let text = aqua_sim::scene::read_text(&file)?;
         let err = |m: String| SimError::input(format!("{}: {m}", file.display()));
         let raw: RawCases = toml::from_str(&text).map_err(|e| err(e.to_string()))?;
         let dir = file.parent().unwrap_or(Path::new("."));
@@ -159,7 +160,7 @@ impl Sweep {
             cases,
         };
         for c in &sweep.cases {
-            crate::scene::read_scene_with(&sweep.scene, &c.overrides).map_err(|e| {
+            aqua_sim::scene::read_scene_with(&sweep.scene, &c.overrides).map_err(|e| {
                 SimError::input(format!(
                     "{}: case {} ({}): {}",
                     sweep.file.display(),
@@ -443,7 +444,7 @@ fn collect_one(folder: &Path) -> Result<Collected> {
         ("static+dynamic", n) if n > 1 => &table.rows[1..],
         _ => &table.rows[..],
     };
-    // The extremes over every accepted step, where the run wrote them (crate::extremes).
+    // The extremes over every accepted step, where the run wrote them (aqua_sim::extremes).
     let extremes = read_extremes(folder);
     c.every_step = extremes.is_some();
     for (k, col) in table.columns.iter().enumerate() {
