@@ -177,6 +177,55 @@ impl Sweep {
     pub fn case_dir(&self, k: usize) -> PathBuf {
         self.out.join(case_folder(k))
     }
+
+    /// `EXE sweep FILE --case K [--out DIR]` with absolute paths, for another process or host
+    /// (`k` may be a shell expression such as `"$SLURM_ARRAY_TASK_ID"`, passed through as is;
+    /// `--out` when the sweep was given one).
+    pub fn case_command(&self, exe: &Path, k: &str, with_out: bool) -> String {
+        let mut cmd = format!(
+            "{} sweep {} --case {k}",
+            shell_word(&exe.to_string_lossy()),
+            shell_word(&self.file.to_string_lossy())
+        );
+        if with_out {
+            cmd += &format!(" --out {}", shell_word(&self.out.to_string_lossy()));
+        }
+        cmd
+    }
+
+    /// A Slurm job-array script: one case per array task calling `exe`, Slurm's own output
+    /// of each task in the case's folder (which the caller creates: Slurm does not create
+    /// the folder of an `--output` file).
+    pub fn slurm_script(&self, exe: &Path, with_out: bool) -> String {
+        let stem = self
+            .file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "sweep".into());
+        let job: String = stem
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        format!(
+            "#!/bin/bash\n\
+             # {n} load cases of {scene}: one Slurm array task per case.\n\
+             # Submit with: sbatch {job}.sbatch   (collect afterwards: aqua collect {out})\n\
+             #SBATCH --job-name=aqua-{job}\n\
+             #SBATCH --array=0-{last}\n\
+             #SBATCH --ntasks=1\n\
+             #SBATCH --cpus-per-task=1\n\
+             #SBATCH --output={out_dir}/case_%4a/slurm-%A_%a.log\n\
+             set -euo pipefail\n\
+             : \"${{SLURM_ARRAY_TASK_ID:?run this script with sbatch (or set SLURM_ARRAY_TASK_ID)}}\"\n\
+             exec {cmd}\n",
+            n = self.cases.len(),
+            out_dir = self.out.display(),
+            scene = self.scene.display(),
+            out = self.out.display(),
+            last = self.cases.len() - 1,
+            cmd = self.case_command(exe, "\"$SLURM_ARRAY_TASK_ID\"", with_out),
+        )
+    }
 }
 
 /// `case_NNNN`.
@@ -547,6 +596,18 @@ impl Collection {
                 })
             })
             .collect()
+    }
+}
+
+/// A word for a POSIX shell: single-quoted unless it is plainly safe.
+fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
     }
 }
 
