@@ -68,7 +68,7 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     for f in ["forces", "tensions", "line_ends", "static_convergence"] {
         let png = out.join("plots").join(format!("{f}.png"));
-        assert_eq!(png_size(&png), aqua_sim::plot::SIZE, "{f}");
+        assert_eq!(png_size(&png), aqua_study::plot::SIZE, "{f}");
         assert!(stdout.contains(&format!("{f}.png")), "{stdout}");
     }
     // A chain has no net: no volume picture.
@@ -76,7 +76,7 @@ fn run_plot_draws_the_summary_columns_and_the_static_convergence() {
 
     // The plotted data against the CSV.
     let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
-    let pictures = aqua_sim::plot::plot_run(&out).unwrap();
+    let pictures = aqua_study::plot::plot_run(&out).unwrap();
     let mut checked = 0;
     let mut peaks = 0;
     for p in &pictures {

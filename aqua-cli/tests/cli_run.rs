@@ -1357,7 +1357,7 @@ fn collect_study_and_plot_report_a_peak_between_output_steps() {
     }
 
     // aqua plot: the line-end picture marks the peak, above the sampled curve.
-    let pictures = aqua_sim::plot::plot_run(&coarse).unwrap();
+    let pictures = aqua_study::plot::plot_run(&coarse).unwrap();
     let ends = pictures
         .iter()
         .find(|p| p.path.ends_with("line_ends.png"))
@@ -1366,4 +1366,93 @@ fn collect_study_and_plot_report_a_peak_between_output_steps() {
     let (t, peak) = s.peak.expect("the per-step peak is marked");
     assert!(close(peak) && (t - t_ref).abs() < 1e-9, "({t}, {peak})");
     assert_eq!(s.max, peak);
+}
+
+/// Every file under `dir`, relative, sorted.
+fn files_under(dir: &Path) -> Vec<String> {
+    fn walk(base: &Path, d: &Path, out: &mut Vec<String>) {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            out.push(p.strip_prefix(base).unwrap().to_string_lossy().into_owned());
+            if p.is_dir() {
+                walk(base, &p, out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+/// `aqua run` and the library's `run_scene` (what Python's `Scene.run` calls) write the same
+/// files: a dynamic run in waves, so that the wave component table is among them.
+#[test]
+fn the_library_run_writes_the_files_of_aqua_run() {
+    let dir = scratch("library-run");
+    let text = std::fs::read_to_string(root().join("examples/moored-cage.toml")).unwrap();
+    assert!(text.contains("t_end = 60.0"));
+    let scene = dir.join("moored-cage.toml");
+    std::fs::write(&scene, text.replace("t_end = 60.0", "t_end = 0.4")).unwrap();
+    let (cli, lib) = (dir.join("cli"), dir.join("lib"));
+    let (code, _, err) = aqua(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        cli.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    struct Quiet;
+    impl aqua_sim::Observer for Quiet {}
+    let outcome = aqua_sim::run_scene(
+        aqua_sim::RunOptions {
+            scene: aqua_sim::PrepareOptions::file(&scene),
+            out: Some(&lib),
+        },
+        &mut Quiet,
+    )
+    .unwrap();
+    assert!(outcome.result.is_ok());
+    assert_eq!(outcome.record.ending, aqua_sim::Ending::Completed);
+
+    let names = files_under(&cli);
+    for f in [
+        "run.json",
+        "summary.csv",
+        "extremes.csv",
+        "wave_components.csv",
+        "open_in_paraview.py",
+        "moored-cage.pvd",
+    ] {
+        assert!(names.iter().any(|n| n == f), "{f} not in {names:?}");
+    }
+    assert_eq!(files_under(&lib), names);
+    for f in ["summary.csv", "extremes.csv", "wave_components.csv"] {
+        assert_eq!(
+            std::fs::read_to_string(lib.join(f)).unwrap(),
+            std::fs::read_to_string(cli.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    let json = |d: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(d.join("run.json")).unwrap()).unwrap()
+    };
+    let (a, b) = (json(&cli), json(&lib));
+    let keys = |v: &serde_json::Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    assert_eq!(keys(&b), keys(&a));
+    for k in [
+        "status",
+        "output_steps",
+        "paraview_steps",
+        "steps",
+        "final",
+        "extremes",
+        "resolved",
+        "names",
+        "diagnostics",
+    ] {
+        assert_eq!(b[k], a[k], "{k}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -18,7 +18,6 @@
 //! both subclasses of `aqua.AquaError`, which the other failures (files, coupling calls) raise.
 
 use aqua_sim::coupling::{Forces, Target};
-use aqua_sim::files::RunFiles;
 use aqua_sim::{Frame, Observer, SimError};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::create_exception;
@@ -109,7 +108,7 @@ impl Scene {
         let scene = self.inner.clone();
         let report = py
             .detach(|| {
-                let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)?;
+                let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(scene))?;
                 aqua_sim::check::report(&prep)
             })
             .map_err(err)?;
@@ -152,24 +151,20 @@ impl Scene {
     }
 }
 
-/// Collects every output step in memory (and writes the files when asked).
-struct Collect<'a> {
-    built: &'a aqua_sim::Built,
-    files: Option<RunFiles>,
+/// Collects every output step in memory.
+#[derive(Default)]
+struct Collect {
     rows: Vec<Vec<f64>>,
-    positions: Vec<f64>,
+    /// Positions of the model's nodes per output step: the mesh's nodes, then a rod's twist
+    /// carriers ([`Results`] keeps the mesh's).
+    positions: Vec<Vec<[f64; 3]>>,
     tensions: Vec<f64>,
 }
 
-impl Observer for Collect<'_> {
+impl Observer for Collect {
     fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
-        if let Some(files) = &mut self.files {
-            files.write_frame(self.built, f)?;
-        }
         self.rows.push(f.row.values());
-        // The mesh's nodes (a rod's twist carriers follow them in the model).
-        let np = self.built.mesh.nodes.len();
-        self.positions.extend(f.state.x[..np].iter().flatten());
+        self.positions.push(f.state.x.clone());
         self.tensions.extend(&f.outputs.tension);
         Ok(())
     }
@@ -181,40 +176,28 @@ impl Observer for Collect<'_> {
     }
 }
 
-/// Runs a scene; `None` when Ctrl-C stopped it.
+/// Runs a scene as `aqua run` does (the same files with `out`); `None` when Ctrl-C stopped it.
 fn run_scene(scene: aqua_sim::Scene, out: Option<PathBuf>) -> aqua_sim::Result<Option<Results>> {
-    let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)?;
-    let mut sim = aqua_sim::Simulation::new(&prep)?;
-    let files = match &out {
-        Some(dir) => Some(RunFiles::create(dir, &prep.scene.name, &prep.built)?),
-        None => None,
+    let mut c = Collect::default();
+    let options = aqua_sim::RunOptions {
+        scene: aqua_sim::PrepareOptions::scene(scene),
+        out: out.as_deref(),
     };
-    let mut c = Collect {
-        built: &prep.built,
-        files,
-        rows: Vec::new(),
-        positions: Vec::new(),
-        tensions: Vec::new(),
-    };
-    let (record, result) = sim.run(&mut c);
-    // The buffered summary rows and the extremes, also after an interruption or a failure;
-    // the run's own error is raised first.
-    let flushed = c.files.as_mut().map_or(Ok(()), |f| {
-        f.flush()?;
-        record
-            .extremes
-            .as_ref()
-            .map_or(Ok(()), |e| f.write_extremes(e))
-    });
-    result?;
-    flushed?;
+    let outcome = aqua_sim::run_scene(options, &mut c)?;
+    outcome.result?;
+    let (prep, record) = (&outcome.prepared, &outcome.record);
     if record.ending == aqua_sim::Ending::Interrupted {
         return Ok(None);
     }
+    let np = prep.built.mesh.nodes.len();
     Ok(Some(Results {
         columns: aqua_sim::SummaryRow::columns(&prep.built),
         rows: c.rows,
-        positions: c.positions,
+        positions: c
+            .positions
+            .iter()
+            .flat_map(|x| x[..np].iter().flatten().copied())
+            .collect(),
         tensions: c.tensions,
         n_nodes: prep.built.mesh.nodes.len(),
         n_elements: prep.built.model.elements().len(),

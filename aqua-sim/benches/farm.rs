@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 fn farm() -> Prepared {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/farm.toml");
-    aqua_sim::prepare_with(&path, &[]).expect("scene")
+    aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).expect("scene")
 }
 
 /// One static solve: (wall, Newton iterations).

@@ -21,7 +21,7 @@ use aqua_fem::{StaticControl, StaticProgress};
 use aqua_sim::check::free_dofs;
 use aqua_sim::plan::Prepared;
 use aqua_sim::run::water_loads;
-use aqua_sim::solvers::{start_integrator, static_equilibrium};
+use aqua_sim::{start_integrator, static_equilibrium};
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -31,7 +31,7 @@ const STEPS: usize = 3;
 
 fn farm() -> Prepared {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/farm-full-scale.toml");
-    aqua_sim::prepare_with(&path, &[]).expect("scene")
+    aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).expect("scene")
 }
 
 /// Resident memory of this process [bytes] (/proc/self/statm; 0 where there is none).

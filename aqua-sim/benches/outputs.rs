@@ -13,8 +13,8 @@
 //! Also prints the bytes of one output step.
 
 use aqua_fem::{Outputs, State};
-use aqua_sim::files::RunFiles;
-use aqua_sim::{Frame, Observer, Override, Prepared, SummaryRow, prepare_with};
+use aqua_sim::RunFiles;
+use aqua_sim::{Frame, Observer, Override, PrepareOptions, Prepared, SummaryRow};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -34,7 +34,7 @@ fn scratch(name: &str) -> PathBuf {
 
 fn prepare(file: &str, set: &[&str]) -> Prepared {
     let set: Vec<Override> = set.iter().map(|s| s.parse().unwrap()).collect();
-    prepare_with(&example(file), &set).expect("scene")
+    aqua_sim::prepare(PrepareOptions::file(&example(file)).with_overrides(&set)).expect("scene")
 }
 
 /// Keeps copies of every frame.

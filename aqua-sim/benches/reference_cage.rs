@@ -8,17 +8,16 @@
 use aqua_env::Phase;
 use aqua_fem::{DynamicSettings, DynamicSolver, LinearSolverKind, State, solve_static};
 use aqua_hydro::assembly::LoadAssembly;
-use aqua_sim::build::build;
 use aqua_sim::provider::WaterLoads;
-use aqua_sim::scene::read_scene;
+use aqua_sim::{PrepareOptions, prepare};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 fn bench(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/reference-cage.toml");
-    let scene = read_scene(&path).expect("scene");
-    let built = build(&scene).expect("model");
+    let prep = prepare(PrepareOptions::file(&path)).expect("scene");
+    let (scene, built) = (&prep.scene, &prep.built);
     let assembly = LoadAssembly::new(
         built.sea.clone(),
         built.model.n_nodes(),

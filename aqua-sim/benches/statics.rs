@@ -18,7 +18,7 @@ fn cage(element_length: f64) -> Prepared {
     let set = [format!("element_length={element_length}")
         .parse()
         .expect("override")];
-    aqua_sim::prepare_with(&path, &set).expect("scene")
+    aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path).with_overrides(&set)).expect("scene")
 }
 
 /// One static solve: (wall, Newton iterations).

@@ -21,7 +21,7 @@
 
 use crate::build::Prescribed;
 use crate::error::{Result, SimError};
-use crate::plan::{Integrator, Prepared, prepare_scene};
+use crate::plan::{Integrator, PrepareOptions, Prepared, prepare};
 use crate::run::water_loads;
 use crate::scene::{AnalysisKind, Scene};
 use crate::solvers::{Stepper, start_integrator, static_equilibrium};
@@ -90,7 +90,7 @@ pub struct Coupling {
 impl Coupling {
     /// Builds the scene with every `[[prescribed]]` node driven from outside.
     pub fn new(scene: Scene) -> Result<Self> {
-        let prep = prepare_scene(scene, Prescribed::External)?;
+        let prep = prepare(PrepareOptions::scene(scene).with_prescribed(Prescribed::External))?;
         let nodes = prep.built.model.nodes();
         let points: Vec<CoupledPoint> = prep
             .built

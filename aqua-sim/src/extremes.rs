@@ -217,7 +217,7 @@ impl Extremes {
         for (c, e) in self.table() {
             s.push_str(&format!(
                 "{},{},{},{},{}\n",
-                crate::study::csv_field(c),
+                crate::csv::csv_field(c),
                 e.max,
                 e.t_max,
                 e.min,
@@ -275,7 +275,7 @@ pub fn read_extremes(dir: &std::path::Path) -> Option<BTreeMap<String, Extreme>>
 mod tests {
     use super::*;
     use crate::error::Result;
-    use crate::{Frame, Observer, Prescribed, RunRecord, Simulation, prepare_scene};
+    use crate::{Frame, Observer, PrepareOptions, RunRecord, Simulation, prepare};
     use std::path::Path;
 
     /// A line shorter than its 109.7 m chord: taut throughout.
@@ -321,7 +321,7 @@ mod tests {
         "#
         );
         let scene = crate::scene::parse_scene(&text, Path::new("chain.toml")).unwrap();
-        let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+        let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         struct Rows(Vec<Vec<f64>>);
         impl Observer for Rows {
             fn frame(&mut self, f: &Frame<'_>) -> Result<()> {

@@ -544,7 +544,7 @@ pub fn write_kinematics(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Frame, Observer, Prescribed, Simulation, prepare_scene, scene::parse_scene};
+    use crate::{Frame, Observer, PrepareOptions, Simulation, prepare, scene::parse_scene};
 
     /// One output frame, owned: state, outputs, wake factors, summary row.
     type Kept = (State, Outputs, Vec<f64>, SummaryRow);
@@ -572,7 +572,7 @@ mod tests {
             output_interval = 0.1
         "#;
         let scene = parse_scene(text, Path::new("chain.toml")).unwrap();
-        let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+        let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         struct Keep(Vec<Kept>);
         impl Observer for Keep {
             fn frame(&mut self, f: &Frame<'_>) -> Result<()> {

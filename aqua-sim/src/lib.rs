@@ -1,13 +1,14 @@
 //! aqua-sim: the simulator as a library.
 //!
-//! A scene (TOML, [`scene`]) becomes a model ([`build`]): the merged mesh (aqua-mesh), the
+//! A scene (TOML, [`scene`]) becomes a model (`build`): the merged mesh (aqua-mesh), the
 //! structural model (aqua-fem), the sea (aqua-env) and the water-load elements (aqua-hydro).
 //! [`plan`] validates the analysis (the one validation `aqua check` and `aqua run` share),
-//! [`run`] drives statics and dynamics through the solvers ([`solvers`], the only caller of
-//! aqua-fem's `solve_static`, `DynamicSolver` and `ExplicitSolver`), [`post`] computes the
+//! [`run`] drives statics and dynamics through the solvers (`solvers`, the only caller of
+//! aqua-fem's `solve_static`, `DynamicSolver` and `ExplicitSolver`), `post` computes the
 //! physical outputs of each output step, [`extremes`] the load extremes over every step,
-//! [`files`] writes them, and [`coupling`] lets another
-//! code drive prescribed nodes step by step.
+//! `files` writes them, [`run_scene`] is a whole run with every output file (the one `aqua
+//! run`, Python and the tests share), and [`coupling`] lets another code drive prescribed
+//! nodes step by step.
 //!
 //! Governing equations (docs/theory/fem.md#model-and-unknowns, #static-solver to
 //! #explicit-schemes): the semi-discrete equations of motion of the cable network
@@ -24,36 +25,40 @@
 //! Errors are typed ([`SimError`]): the `aqua` binary and the Python module turn them into
 //! text; warnings are [`Diagnostic`]s.
 
-pub mod build;
+mod build;
 pub mod buoy;
 pub mod check;
 pub mod coupling;
+mod csv;
 pub mod design;
 pub mod diagnostic;
 pub mod error;
 pub mod estimate;
 pub mod extremes;
-pub mod files;
+mod files;
 pub mod net_triangles;
 pub mod overrides;
 pub mod pipe_stress;
 pub mod plan;
-pub mod plot;
-pub mod post;
+mod post;
 pub mod provider;
 pub mod run;
+mod run_json;
+mod run_scene;
 pub mod scene;
-pub mod solvers;
-pub mod study;
-pub mod sweep;
+mod solvers;
 
-pub use build::{Built, Prescribed, build};
+pub use build::{Built, Prescribed, build_mesh, resolve_ref};
 pub use coupling::Coupling;
+pub use csv::{csv_field, csv_line};
 pub use diagnostic::{Diagnostic, Severity};
 pub use error::{ModelError, Result, SimError};
 pub use extremes::{Extreme, Extremes};
+pub use files::{RunFiles, write_component_table, write_kinematics};
 pub use overrides::Override;
-pub use plan::{Integrator, Plan, Prepared, prepare, prepare_scene, prepare_with};
-pub use post::SummaryRow;
+pub use plan::{Integrator, Plan, PrepareOptions, Prepared, SceneSource, prepare};
+pub use post::{SummaryRow, net_force, total_volume};
 pub use run::{Ending, Frame, Observer, RunRecord, Simulation};
+pub use run_scene::{RunOptions, RunOutcome, Written, run_scene};
 pub use scene::{Scene, read_scene};
+pub use solvers::{Stepper, start_integrator, static_equilibrium};

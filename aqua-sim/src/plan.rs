@@ -1,11 +1,11 @@
 //! The validated analysis of a scene — what `aqua check` reports and `aqua run` runs — and the
 //! one validation both go through ([`prepare`]).
 
-use crate::build::{Built, Prescribed, build_with};
+use crate::build::{Built, Prescribed, build};
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
-use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene, read_scene_with};
+use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene_with};
 use aqua_fem::{DynamicSettings, ExplicitSettings, StaticSettings};
 use std::path::Path;
 
@@ -58,20 +58,80 @@ impl Prepared {
     }
 }
 
-/// Reads, builds and plans a scene file: the validation of `aqua check` and `aqua run`.
-pub fn prepare(path: &Path) -> Result<Prepared> {
-    prepare_scene(read_scene(path)?, Prescribed::AsScene)
+/// Where [`prepare`] takes a scene from.
+#[derive(Debug, Clone)]
+pub enum SceneSource<'a> {
+    /// A scene file (TOML), read and changed by the overrides.
+    File(&'a Path),
+    /// A scene already read (a Python dict, a test's text); it takes no overrides.
+    Scene(Box<Scene>),
 }
 
-/// [`prepare`] of the scene changed by `overrides` (`--set`, study ladders, sweep cases). An
-/// error in building the changed scene names the changes.
-pub fn prepare_with(path: &Path, overrides: &[Override]) -> Result<Prepared> {
-    let scene = read_scene_with(path, overrides)?;
+/// What [`prepare`] reads, changes and builds.
+#[derive(Debug, Clone)]
+pub struct PrepareOptions<'a> {
+    /// The scene.
+    pub source: SceneSource<'a>,
+    /// Changes of scene keys (`--set`, study ladders, sweep cases), applied in order to a
+    /// scene file's text.
+    pub overrides: &'a [Override],
+    /// How the `[[prescribed]]` nodes move (driven from outside in a coupling).
+    pub prescribed: Prescribed,
+}
+
+impl<'a> PrepareOptions<'a> {
+    /// A scene file as it is.
+    pub fn file(path: &'a Path) -> Self {
+        Self {
+            source: SceneSource::File(path),
+            overrides: &[],
+            prescribed: Prescribed::AsScene,
+        }
+    }
+
+    /// A scene already read.
+    pub fn scene(scene: Scene) -> Self {
+        Self {
+            source: SceneSource::Scene(Box::new(scene)),
+            overrides: &[],
+            prescribed: Prescribed::AsScene,
+        }
+    }
+
+    /// The same scene changed by `overrides`.
+    pub fn with_overrides(self, overrides: &'a [Override]) -> Self {
+        Self { overrides, ..self }
+    }
+
+    /// The same scene with its `[[prescribed]]` nodes moving as `prescribed` says.
+    pub fn with_prescribed(self, prescribed: Prescribed) -> Self {
+        Self { prescribed, ..self }
+    }
+}
+
+/// Reads, builds and plans a scene: the validation of `aqua check` and `aqua run`. An error
+/// in building a scene changed by overrides names the changes.
+pub fn prepare(options: PrepareOptions<'_>) -> Result<Prepared> {
+    let PrepareOptions {
+        source,
+        overrides,
+        prescribed,
+    } = options;
+    let scene = match source {
+        SceneSource::File(path) => read_scene_with(path, overrides)?,
+        SceneSource::Scene(scene) if overrides.is_empty() => *scene,
+        SceneSource::Scene(scene) => {
+            return Err(SimError::input(format!(
+                "{}: overrides change a scene file's text; this scene was not read from a file",
+                scene.path.display()
+            )));
+        }
+    };
     if overrides.is_empty() {
-        return prepare_scene(scene, Prescribed::AsScene);
+        return prepare_built(scene, prescribed);
     }
     let changes = scene.overrides.join(" ");
-    prepare_scene(scene, Prescribed::AsScene).map_err(|e| {
+    prepare_built(scene, prescribed).map_err(|e| {
         if e.is_input() {
             SimError::input(format!("{} (with --set {changes})", e.chain()))
         } else {
@@ -81,8 +141,8 @@ pub fn prepare_with(path: &Path, overrides: &[Override]) -> Result<Prepared> {
 }
 
 /// Builds and plans a scene already read.
-pub fn prepare_scene(scene: Scene, prescribed: Prescribed) -> Result<Prepared> {
-    let built = build_with(&scene, prescribed)?;
+fn prepare_built(scene: Scene, prescribed: Prescribed) -> Result<Prepared> {
+    let built = build(&scene, prescribed)?;
     let plan = Plan::of(&scene)?;
     Ok(Prepared { scene, built, plan })
 }

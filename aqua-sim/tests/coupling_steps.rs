@@ -10,7 +10,7 @@
 
 use aqua_sim::coupling::Target;
 use aqua_sim::run::{Frame, Observer};
-use aqua_sim::{Coupling, Prescribed, Simulation, prepare_scene};
+use aqua_sim::{Coupling, PrepareOptions, Simulation, prepare};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -80,7 +80,7 @@ fn surge(t: f64) -> (f64, f64, f64) {
 
 /// |F| at the fairlead after every step of `aqua run` (the scene's own motion).
 fn run_forces(dt: f64, n: usize) -> Vec<f64> {
-    let prep = prepare_scene(scene(dt, n as f64 * dt), Prescribed::AsScene).unwrap();
+    let prep = prepare(PrepareOptions::scene(scene(dt, n as f64 * dt))).unwrap();
     let col = aqua_sim::SummaryRow::columns(&prep.built)
         .iter()
         .position(|c| c == "l1_fairlead_reaction")

@@ -5,6 +5,7 @@ The binary is $AQUA_BIN (CI sets it to the one `cargo test` built), else `cargo 
 """
 
 import csv
+import json
 import math
 import os
 import pathlib
@@ -68,6 +69,37 @@ def test_chain_example_static_fairlead_tension_matches_the_cli(tmp_path):
     # tension at the fairlead element (|R| >= T_end, equal within the element's own weight).
     w_elem = (113.0 - 1025.0 * math.pi / 4 * 0.1354**2) * 9.80665 * 120.0 / 80
     assert abs(cli["chain_fairlead_reaction"][0] - cli["chain_fairlead_element_tension"][0]) < w_elem
+
+
+def files_under(d):
+    return sorted(str(p.relative_to(d)) for p in d.rglob("*"))
+
+
+def test_a_python_run_writes_the_files_of_the_cli(tmp_path):
+    # A dynamic run in waves: every output file, the wave component table included.
+    text = (ROOT / "examples" / "moored-cage.toml").read_text()
+    assert "t_end = 60.0" in text
+    scene = tmp_path / "moored-cage.toml"
+    scene.write_text(text.replace("t_end = 60.0", "t_end = 0.4"))
+    cli, py = tmp_path / "cli", tmp_path / "py"
+    r = aqua_cli("run", str(scene), "--out", str(cli), "--quiet")
+    assert r.returncode == 0, r.stderr
+    res = aqua.Scene.load(str(scene)).run(out=str(py))
+    assert res.status == "completed"
+
+    names = files_under(cli)
+    for f in ("run.json", "summary.csv", "extremes.csv", "wave_components.csv",
+              "open_in_paraview.py", "moored-cage.pvd"):
+        assert f in names, f
+    assert files_under(py) == names
+    for f in ("summary.csv", "extremes.csv", "wave_components.csv"):
+        assert (py / f).read_text() == (cli / f).read_text(), f
+    a = json.loads((cli / "run.json").read_text())
+    b = json.loads((py / "run.json").read_text())
+    assert list(b) == list(a)
+    for k in ("status", "output_steps", "paraview_steps", "steps", "final", "extremes",
+              "resolved", "names", "diagnostics"):
+        assert b[k] == a[k], k
 
 
 def surge(t, amplitude=1.5, period=10.0, ramp_time=10.0):

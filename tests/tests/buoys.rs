@@ -3,7 +3,7 @@
 //! independently, the warnings on a bad and a good scene, and the errors of bad input.
 
 use aqua_sim::scene::parse_scene;
-use aqua_sim::{Diagnostic, Frame, Observer, Prescribed, Simulation, prepare_scene};
+use aqua_sim::{Diagnostic, Frame, Observer, PrepareOptions, Simulation, prepare};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -36,7 +36,7 @@ impl Observer for Capture {
 /// static iteration count.
 fn statics(text: &str) -> (Capture, usize) {
     let scene = parse_scene(text, Path::new("buoys-test.toml")).unwrap();
-    let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+    let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     let mut cap = Capture::default();
     cap.codes.extend(prep.diagnostics().iter().map(|d| d.code));
     let mut sim = Simulation::new(&prep).unwrap();
@@ -47,8 +47,8 @@ fn statics(text: &str) -> (Capture, usize) {
 
 fn node_of(text: &str, reference: &str) -> usize {
     let scene = parse_scene(text, Path::new("buoys-test.toml")).unwrap();
-    let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
-    aqua_sim::build::resolve_ref(&prep.built.mesh, reference).unwrap()[0]
+    let prep = prepare(PrepareOptions::scene(scene)).unwrap();
+    aqua_sim::resolve_ref(&prep.built.mesh, reference).unwrap()[0]
 }
 
 /// The spherical cap of height h of a sphere of radius r [m³].
@@ -255,7 +255,7 @@ fn example(name: &str) -> String {
 fn only_free_collars_are_floating_pipes() {
     let floats = |name: &str| {
         let scene = parse_scene(&example(name), Path::new(name)).unwrap();
-        let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+        let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         let labels: Vec<String> = prep
             .built
             .design
@@ -296,7 +296,7 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
                 length = 49.9\nsegments = 10\ndiameter = 0.05\nmass_per_length = 10\n\
                 ea = 1e8\nfixed = [\"anchor\", \"fairlead\"]\n";
     let scene = parse_scene(text, Path::new("taut.toml")).unwrap();
-    let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+    let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     let taut: Vec<_> = prep
         .diagnostics()
         .iter()
@@ -310,7 +310,7 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
     );
     let ok = text.replace("49.9", "50.1");
     let scene = parse_scene(&ok, Path::new("taut.toml")).unwrap();
-    let prep = prepare_scene(scene, Prescribed::AsScene).unwrap();
+    let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     assert!(
         prep.diagnostics()
             .iter()
@@ -322,7 +322,7 @@ fn error_of(text: &str) -> String {
     let path = Path::new("bad.toml");
     match parse_scene(text, path) {
         Err(e) => e.chain(),
-        Ok(scene) => prepare_scene(scene, Prescribed::AsScene)
+        Ok(scene) => prepare(PrepareOptions::scene(scene))
             .map(|_| String::new())
             .unwrap_or_else(|e| e.chain()),
     }

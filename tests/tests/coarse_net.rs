@@ -30,10 +30,10 @@ fn warns_and_volume(element_length: f64) -> (bool, f64) {
         .diagnostics
         .iter()
         .any(|d| d.code == "mesh/coarse-net");
-    let v0 = aqua_sim::post::total_volume(&prep.built, prep.built.model.nodes());
+    let v0 = aqua_sim::total_volume(&prep.built, prep.built.model.nodes());
     (
         warns,
-        aqua_sim::post::total_volume(&prep.built, &sol.state.x) / v0,
+        aqua_sim::total_volume(&prep.built, &sol.state.x) / v0,
     )
 }
 

@@ -20,10 +20,10 @@ fn moored_collar_in_current_is_smooth_and_below_yield() {
         example("moored-cage.toml").replace("kind = \"static+dynamic\"", "kind = \"static\"");
     let path = dir.join("moored.toml");
     std::fs::write(&path, text).unwrap();
-    let prep = aqua_sim::prepare(&path).unwrap();
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let built = &prep.built;
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
-    let sol = aqua_sim::solvers::static_equilibrium(
+    let sol = aqua_sim::static_equilibrium(
         &built.model,
         &built.mesh,
         &mut loads,

@@ -3,7 +3,7 @@
 //! and a coupling drives it like any other prescribed group.
 
 mod common;
-use aqua_sim::build::Prescribed;
+use aqua_sim::Prescribed;
 use aqua_sim::coupling::{Coupling, Target};
 use common::scratch;
 
@@ -41,8 +41,10 @@ fn a_coupled_group_needs_no_motion_keys_and_a_coupling_drives_it() {
     sim.close();
 
     // `aqua check` builds it (the nodes held in place); a run refuses it and says why.
-    let prep = aqua_sim::prepare_scene(scene("check", &text).unwrap(), Prescribed::AsScene)
-        .expect("a coupled scene passes the check");
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(
+        scene("check", &text).unwrap(),
+    ))
+    .expect("a coupled scene passes the check");
     let Err(e) = aqua_sim::run::Simulation::new(&prep) else {
         panic!("a run refuses a coupled motion")
     };
@@ -53,8 +55,10 @@ fn a_coupled_group_needs_no_motion_keys_and_a_coupling_drives_it() {
 #[test]
 fn a_coupled_group_with_a_motion_key_is_an_error_naming_it() {
     let text = chain("motion = \"coupled\"\noffset = [1.0, 0.0, 0.0]");
-    let Err(e) = aqua_sim::prepare_scene(scene("offset", &text).unwrap(), Prescribed::External)
-    else {
+    let Err(e) = aqua_sim::prepare(
+        aqua_sim::PrepareOptions::scene(scene("offset", &text).unwrap())
+            .with_prescribed(Prescribed::External),
+    ) else {
         panic!("offset with a coupled motion is refused")
     };
     let e = e.to_string();

@@ -85,7 +85,8 @@ fn no_crate_spells_a_physical_constant_of_its_own() {
 fn prepare_text(dir: &Path, name: &str, text: &str) -> aqua_sim::Prepared {
     let p = dir.join(format!("{name}.toml"));
     std::fs::write(&p, text).unwrap();
-    aqua_sim::prepare(&p).unwrap_or_else(|e| panic!("{name}: {}", e.chain()))
+    aqua_sim::prepare(aqua_sim::PrepareOptions::file(&p))
+        .unwrap_or_else(|e| panic!("{name}: {}", e.chain()))
 }
 
 /// The effective gravity of every path is the sea's: the structure's g, the cage builder's
@@ -232,7 +233,7 @@ fn pipe_walls_follow_the_standard_dimension_ratio() {
     let bad = format!("{cct}\n[cage.groups.top_links]\nelastic_diameter = 0.03\n");
     let p = dir.join("bad.toml");
     std::fs::write(&p, bad).unwrap();
-    let Err(err) = aqua_sim::prepare(&p) else {
+    let Err(err) = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&p)) else {
         panic!("a wall thicker than the radius must fail")
     };
     let err = err.chain();

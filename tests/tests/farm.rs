@@ -9,8 +9,8 @@ use common::*;
 use aqua_env::Phase;
 use aqua_fem::{StaticControl, StaticSolution};
 use aqua_sim::run::water_loads;
-use aqua_sim::solvers::static_equilibrium;
-use aqua_sim::{Prepared, prepare};
+use aqua_sim::static_equilibrium;
+use aqua_sim::{PrepareOptions, Prepared, prepare};
 use std::collections::HashMap;
 
 /// A solved farm: the scene, the equilibrium, the wall time [s] and the x-drag on each
@@ -31,7 +31,7 @@ fn solve(name: &str, edit: impl Fn(String) -> String) -> Solved {
     );
     let path = dir.join("farm.toml");
     std::fs::write(&path, edit(text)).unwrap();
-    let prep = prepare(&path).unwrap();
+    let prep = prepare(PrepareOptions::file(&path)).unwrap();
     let (mut loads, _) = water_loads(&prep, Phase::Static).unwrap();
     let t0 = std::time::Instant::now();
     let sol = static_equilibrium(
@@ -202,7 +202,7 @@ fn farm_in_a_current_along_a_grid_axis() {
     // heavily loaded ones ride up by a few decimetres (measured up to 0.45 m), held by the
     // buoyancy of their wet neighbouring elements. The plates hang clear of the seabed.
     let z = |r: &str| {
-        let n = aqua_sim::build::resolve_ref(&b.mesh, r).unwrap();
+        let n = aqua_sim::resolve_ref(&b.mesh, r).unwrap();
         let zs: Vec<f64> = n.iter().map(|&i| sol.state.x[i][2]).collect();
         (
             zs.iter().copied().fold(f64::INFINITY, f64::min),
@@ -262,7 +262,7 @@ fn bad_farm_input_names_file_key_and_valid_values() {
     let check = |name: &str, edit: &dyn Fn(String) -> String, want: &[&str]| {
         let path = dir.join(format!("{name}.toml"));
         std::fs::write(&path, edit(example("farm.toml"))).unwrap();
-        let e = match prepare(&path) {
+        let e = match prepare(PrepareOptions::file(&path)) {
             Ok(_) => panic!("{name}: accepted"),
             Err(e) => e.chain(),
         };

@@ -8,7 +8,7 @@ mod common;
 use common::*;
 
 use aqua_mesh::Mesh;
-use aqua_sim::build::build_mesh;
+use aqua_sim::build_mesh;
 use aqua_sim::scene::parse_scene;
 use std::path::Path;
 
@@ -236,7 +236,7 @@ fn an_empty_slot_has_no_cage_and_no_bridles() {
         farm_text("\n[[farm.slot]]\nrow = 1\ncolumn = 2\nempty = true\n"),
     )
     .unwrap();
-    let prep = aqua_sim::prepare(&path).unwrap();
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let c = &prep.built.farms[0].counts;
     assert_eq!(
         (c.cages, c.bridles, c.plates, c.anchor_lines),
@@ -254,7 +254,7 @@ fn each_cage_wake_factor_comes_from_its_own_net() {
         farm_text("\n[[farm.slot]]\nrow = 1\ncolumn = 2\nnet.solidity = 0.3\n"),
     )
     .unwrap();
-    let prep = aqua_sim::prepare(&path).unwrap();
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let b = &prep.built;
     // Løland (hydrodynamics spec §6.1): r = 1 − 0.46·(Sn − 1.24Sn² + 13.7Sn³).
     let loland = |sn: f64| 1.0 - 0.46 * (sn - 1.24 * sn * sn + 13.7 * sn.powi(3));

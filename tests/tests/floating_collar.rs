@@ -11,7 +11,6 @@
 
 use aqua_env::Phase;
 use aqua_fem::StaticControl;
-use aqua_sim::build::Prescribed;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -112,11 +111,11 @@ fn solve_scene(
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
     let scene = aqua_sim::read_scene(&path)?;
-    let prep = aqua_sim::prepare_scene(scene, Prescribed::AsScene)?;
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(scene))?;
     let c = prep.built.sea.constants();
     let (rho_w, g) = (c.density, c.gravity);
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static)?;
-    let sol = aqua_sim::solvers::static_equilibrium(
+    let sol = aqua_sim::static_equilibrium(
         &prep.built.model,
         &prep.built.mesh,
         &mut loads,
@@ -324,7 +323,7 @@ fn bad_pipe_and_bending_keys_name_the_key() {
         std::fs::write(&path, format!("[[cage]]\ntype = \"CSM\"\n{collar}\n")).unwrap();
         let err = chain(
             &aqua_sim::read_scene(&path)
-                .and_then(|s| aqua_sim::prepare_scene(s, Prescribed::AsScene))
+                .and_then(|s| aqua_sim::prepare(aqua_sim::PrepareOptions::scene(s)))
                 .map(|_| ())
                 .unwrap_err(),
         );

@@ -4,7 +4,6 @@
 //! different triangulations gives the same drag.
 
 mod common;
-use aqua_sim::build::Prescribed;
 use common::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -27,7 +26,7 @@ fn solve(dir: &Path, name: &str, text: &str) -> (Vec<[f64; 3]>, usize, [f64; 3])
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
     let (prep, loads, sol) = static_solve(&path);
-    let f = aqua_sim::post::net_force(&prep.built, &loads, &sol.state);
+    let f = aqua_sim::net_force(&prep.built, &loads, &sol.state);
     (sol.state.x, sol.report.iterations, f)
 }
 
@@ -183,7 +182,7 @@ fn net_triangle_keys_are_checked() {
     );
     std::fs::write(dir.join("m.toml"), &text).unwrap();
     let e = aqua_sim::read_scene(&dir.join("m.toml"))
-        .and_then(|s| aqua_sim::prepare_scene(s, Prescribed::AsScene))
+        .and_then(|s| aqua_sim::prepare(aqua_sim::PrepareOptions::scene(s)))
         .unwrap_err()
         .to_string();
     assert!(e.contains("net.drag") && e.contains("triangle"), "{e}");

@@ -174,7 +174,7 @@ fn rigid_reference_cage_drag_is_the_sum_of_its_panels() {
     let r = (1.0 - 0.46 * cd0).clamp(0.0, 1.0);
     let s1_cd = |c: f64| 0.04 + (-0.04 + sn - 1.24 * sn * sn + 13.7 * sn.powi(3)) * c;
 
-    let prep = aqua_sim::prepare(&path).unwrap();
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let mesh = &prep.built.mesh;
     let x: Vec<[f64; 3]> = mesh.nodes.iter().map(|p| [p.x, p.y, p.z]).collect();
     let corners = |p: &PanelNodes| -> Vec<usize> {

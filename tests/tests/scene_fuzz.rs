@@ -6,7 +6,7 @@
 //! replaced by one of the wrong type (string, bool, array, table), a negative number, zero,
 //! `nan`, `inf`, a huge number or an empty array; its key is misspelled; and the line is
 //! dropped (a required key then goes missing). Each mutated text goes through what
-//! `aqua check` runs — [`aqua_sim::prepare_with`] and [`aqua_sim::check::report`] — and the
+//! `aqua check` runs — [`aqua_sim::prepare`] and [`aqua_sim::check::report`] — and the
 //! error is printed as the binary prints it (the error followed by its sources).
 //!
 //! `AQUA_FUZZ_TRACE=1` prints each mutation before it runs (to find one that aborts the
@@ -192,7 +192,7 @@ fn has_line(msg: &str) -> bool {
 
 /// What `aqua check` says about a scene file: `None` if valid, else its error message.
 fn check(path: &Path) -> Option<String> {
-    let prep = match aqua_sim::prepare_with(path, &[]) {
+    let prep = match aqua_sim::prepare(aqua_sim::PrepareOptions::file(path)) {
         Ok(p) => p,
         Err(e) => return Some(e.chain()),
     };

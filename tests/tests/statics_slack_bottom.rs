@@ -75,7 +75,7 @@ fn solve_and_check_balance(screen: &str, speed: f64, wake: &str, max_iterations:
     let dir = scratch(&format!("slack-bottom-{screen}-{speed}-{wake}"));
     let path = dir.join("cage.toml");
     std::fs::write(&path, scene(0.22, screen, speed, wake)).unwrap();
-    let prep = aqua_sim::prepare(&path).unwrap();
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&path)).unwrap();
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, Phase::Static).unwrap();
     let sol = solve_static(&prep.built.model, &mut loads, &prep.plan.statics)
         .unwrap_or_else(|e| panic!("{case}: static solve failed: {e}"));

@@ -19,7 +19,7 @@ pub struct Args {
 
 /// Run `aqua check`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let prep = aqua_sim::prepare_with(&a.scene, &a.set)?;
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::file(&a.scene).with_overrides(&a.set))?;
     let report = aqua_sim::check::report(&prep)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -31,7 +31,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     // `[[point]]` bodies are not builder weights: their totals on their own line.
     for (i, p) in prep.scene.point.iter().enumerate() {
         let v = &p.value;
-        let n = aqua_sim::build::resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
+        let n = aqua_sim::resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
         let k = n as f64;
         let g = prep.built.sea.constants().gravity;
         println!(

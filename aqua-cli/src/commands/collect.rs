@@ -1,5 +1,5 @@
 //! `aqua collect DIR`: merges every run folder under DIR (the cases of `aqua sweep`, or any
-//! `aqua run` outputs) into one CSV table ([`aqua_sim::sweep::collect`]) and prints the
+//! `aqua run` outputs) into one CSV table ([`aqua_study::sweep::collect`]) and prints the
 //! governing case of every summary column. Max and min of the load columns are over every
 //! accepted step where a run wrote its extremes (`extremes.csv`), else over its output steps.
 
@@ -17,7 +17,7 @@ pub struct Args {
 
 /// Run `aqua collect`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let c = aqua_sim::sweep::collect(&a.dir)?;
+    let c = aqua_study::sweep::collect(&a.dir)?;
     let out = a.out.unwrap_or_else(|| a.dir.join("collected.csv"));
     std::fs::write(&out, c.csv()).map_err(|e| anyhow::anyhow!("writing {}: {e}", out.display()))?;
     println!("{:<12} {:<11} {:>9}  name", "folder", "status", "wall [s]");

@@ -454,7 +454,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = out.as_deref();
     if let Some(path) = &args.scene {
         let scene = aqua_sim::scene::read_scene(path)?;
-        let (mesh, _) = aqua_sim::build::build_mesh(&scene)?;
+        let (mesh, _) = aqua_sim::build_mesh(&scene)?;
         return report(&mesh, out, args.json);
     }
     if let Some(file) = &args.from {

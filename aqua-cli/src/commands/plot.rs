@@ -1,5 +1,5 @@
 //! `aqua plot DIR`: PNG pictures of a run folder's time series and static convergence
-//! ([`aqua_sim::plot::plot_run`]), written to `DIR/plots/`.
+//! ([`aqua_study::plot::plot_run`]), written to `DIR/plots/`.
 
 use std::path::PathBuf;
 
@@ -12,12 +12,12 @@ pub struct Args {
 
 /// Run `aqua plot`.
 pub fn run(a: Args) -> anyhow::Result<()> {
-    print_pictures(&aqua_sim::plot::plot_run(&a.dir)?);
+    print_pictures(&aqua_study::plot::plot_run(&a.dir)?);
     Ok(())
 }
 
 /// Lists the pictures written, with the range of every series.
-pub fn print_pictures(pictures: &[aqua_sim::plot::Picture]) {
+pub fn print_pictures(pictures: &[aqua_study::plot::Picture]) {
     if pictures.is_empty() {
         println!("nothing to plot: one output step and no static convergence history");
     }

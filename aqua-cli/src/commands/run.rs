@@ -10,12 +10,12 @@
 use crate::interrupted;
 use anyhow::Context;
 use aqua_fem::{StaticProgress, StepReport};
-use aqua_sim::Override;
-use aqua_sim::files::{RunFiles, write_component_table};
-use aqua_sim::{Diagnostic, Ending, Frame, Observer, Prepared, RunRecord, Simulation};
+use aqua_sim::{
+    Diagnostic, Ending, Observer, Override, PrepareOptions, RunOptions, RunOutcome, RunRecord,
+    Written,
+};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Flags of `aqua run`.
 #[derive(clap::Args, Debug)]
@@ -38,27 +38,16 @@ pub struct Args {
     pub plot: bool,
 }
 
-/// What `run_scene` needs of the flags.
-struct RunOpts<'a> {
-    out: &'a Path,
-    quiet: bool,
-}
-
-/// The run's observer: writes every frame, prints warnings, draws the progress bar and
-/// passes Ctrl-C on as a stop request.
-struct Terminal<'a> {
-    prep: &'a Prepared,
-    files: RunFiles,
+/// The run's observer: prints warnings, draws the progress bar and passes Ctrl-C on as a
+/// stop request.
+struct Terminal {
     bar: ProgressBar,
     quiet: bool,
-    /// Every diagnostic printed, for run.json.
-    diagnostics: Vec<String>,
 }
 
-impl Observer for Terminal<'_> {
+impl Observer for Terminal {
     fn diagnostic(&mut self, d: &Diagnostic) {
         self.bar.suspend(|| eprintln!("{d}"));
-        self.diagnostics.push(d.to_string());
     }
     fn static_started(&mut self) {
         if !self.quiet {
@@ -93,9 +82,6 @@ impl Observer for Terminal<'_> {
         self.bar
             .set_message(format!("{:.2} s, {steps} steps", report.t));
     }
-    fn frame(&mut self, f: &Frame<'_>) -> aqua_sim::Result<()> {
-        self.files.write_frame(&self.prep.built, f)
-    }
     fn stop_requested(&self) -> bool {
         interrupted()
     }
@@ -108,7 +94,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     // instead of being handed over by a thread that only waits (docs/theory/fem.md#threads).
     let ending = rayon::scope(|_| run_scene(&a.scene, &a.set, &a.out, a.quiet))?;
     if a.plot {
-        let pictures = aqua_sim::plot::plot_run(&a.out)?;
+        let pictures = aqua_study::plot::plot_run(&a.out)?;
         if !a.quiet {
             crate::commands::plot::print_pictures(&pictures);
         }
@@ -128,61 +114,31 @@ pub fn run_scene(
     out: &Path,
     quiet: bool,
 ) -> anyhow::Result<Ending> {
-    let a = RunOpts { out, quiet };
-    let t0 = Instant::now();
-    let prep = aqua_sim::prepare_with(scene, set)?;
-    let mut diagnostics = Vec::new();
-    for d in prep.diagnostics() {
-        eprintln!("{d}");
-        diagnostics.push(d.to_string());
-    }
-    let mut sim = Simulation::new(&prep)?;
-    for d in sim.diagnostics() {
-        eprintln!("{d}");
-        diagnostics.push(d.to_string());
-    }
-    let files = RunFiles::create(a.out, &prep.scene.name, &prep.built)?;
-    if prep.built.sea.has_waves() && prep.plan.dynamics.is_some() {
-        // The component table makes the run reproducible exactly
-        // (docs/theory/environment.md#summation).
-        write_component_table(&prep.built.sea, &a.out.join("wave_components.csv"))?;
-    }
-    let mut term = Terminal {
-        prep: &prep,
-        files,
-        bar: ProgressBar::hidden(),
-        quiet: a.quiet,
-        diagnostics,
+    let options = RunOptions {
+        scene: PrepareOptions::file(scene).with_overrides(set),
+        out: Some(out),
     };
-    let (mut record, mut result) = sim.run(&mut term);
+    let mut term = Terminal {
+        bar: ProgressBar::hidden(),
+        quiet,
+    };
+    let outcome = aqua_sim::run_scene(options, &mut term);
     term.bar.finish_and_clear();
-    let mut files = term.files;
-    // The steps still queued for the writer and the summary rows still buffered: written
-    // whether the run completed, was interrupted or failed. A write error found here fails
-    // the run (a solver error found first stays the run's error) and run.json says so.
-    let failed_before = files.write_failed();
-    if let Err(e) = files.flush() {
-        if result.is_ok() {
-            result = Err(e);
-        } else if !failed_before {
-            // A second failure after the run's own (which stays its error).
-            let d = format!("error: {}", e.chain());
-            eprintln!("{d}");
-            term.diagnostics.push(d);
-        }
-        record.ending = Ending::Failed;
+    let RunOutcome {
+        record,
+        result,
+        late_error,
+        written,
+        ..
+    } = outcome?;
+    let files = written.context("the run wrote no output files")?;
+    if let Some(e) = late_error {
+        eprintln!("{e}");
     }
-    record.wall = t0.elapsed().as_secs_f64();
     print_step_control(&record);
-    let mut json = run_json(&prep, &record, &result, &files);
-    json["diagnostics"] = serde_json::json!(term.diagnostics);
-    if let Some(e) = &record.extremes {
-        files.write_extremes(e)?;
-    }
-    files.write_json(&json)?;
     match record.ending {
         Ending::Completed => {
-            if !a.quiet {
+            if !quiet {
                 print_final(&files, &record);
             }
             result?;
@@ -207,8 +163,8 @@ pub fn run_scene(
             eprintln!(
                 "interrupted at t = {} s{partial}: {} output steps kept in {}",
                 record.last.as_ref().map(|r| r.t).unwrap_or(0.0),
-                files.steps_written(),
-                files.pvd_path().display()
+                files.steps,
+                files.pvd.display()
             );
             Ok(Ending::Interrupted)
         }
@@ -218,60 +174,11 @@ pub fn run_scene(
         .with_context(|| {
             format!(
                 "the run stopped; {} output steps written before the failure are kept in {}",
-                files.steps_written(),
-                files.pvd_path().display()
+                files.steps,
+                files.pvd.display()
             )
         }),
     }
-}
-
-/// `run.json`: the scene with defaults, resolved numbers, how the run ended and its timing.
-fn run_json(
-    prep: &Prepared,
-    record: &RunRecord,
-    result: &aqua_sim::Result<()>,
-    files: &RunFiles,
-) -> serde_json::Value {
-    let built = &prep.built;
-    let plan = &prep.plan;
-    serde_json::json!({
-        "scene": &prep.scene,
-        "overrides": &prep.scene.overrides,
-        "resolved": {
-            "mesh": built.mesh.summary(),
-            "sea": &built.sea_summary,
-            "scheme": &prep.scene.analysis.dynamic.scheme,
-            "alpha": plan.alpha,
-            "dt": plan.dt,
-            "output_interval": plan.output_interval,
-            "paraview_interval": plan.paraview_interval(),
-            "t_end": plan.t_end,
-            "structural_groups": &built.group_names,
-        },
-        "status": record.ending.as_str(),
-        "error": result.as_ref().err().map(|e| e.chain()),
-        "final": record.last,
-        "extremes": record.extremes.as_ref().map(|e| e.to_json()),
-        "output_steps": files.steps_written(),
-        "paraview_steps": files.paraview_steps_written(),
-        "pvd": files.pvd_path(),
-        "paraview_script": files.dir().join("open_in_paraview.py"),
-        "names": files.names(),
-        "wall_time_s": record.wall,
-        "dynamic_wall_time_s": record.dyn_wall,
-        "steps": record.steps,
-        "newton_iterations": record.iterations,
-        "static_newton_iterations": record.static_iterations,
-        "static_residual_history": &record.static_residuals,
-        "static_load_factor": record.static_load_factor,
-        "static_converged": record.static_converged,
-        "static_relative_residual": record.static_relative_residual,
-        "step_control": &record.step_control,
-        "energies": &record.energies,
-        "linear_solver": &record.linear_solver,
-        "peak_tension_resolution": record.step_control.as_ref().map(|c| c.peak_tension_resolution()),
-        "time_per_step_s": if record.steps > 0 { record.dyn_wall / record.steps as f64 } else { 0.0 },
-    })
 }
 
 /// Says how often the step control halved the step, and why (docs/theory/fem.md#step-control).
@@ -295,7 +202,7 @@ fn print_step_control(r: &RunRecord) {
     );
 }
 
-fn print_final(files: &RunFiles, r: &RunRecord) {
+fn print_final(files: &Written, r: &RunRecord) {
     if let Some(last) = &r.last {
         println!(
             "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {}",
@@ -316,8 +223,8 @@ fn print_final(files: &RunFiles, r: &RunRecord) {
     }
     println!(
         "{} output steps in {}; wall time {:.2} s{}",
-        files.steps_written(),
-        files.dir().display(),
+        files.steps,
+        files.dir.display(),
         r.wall,
         if r.steps > 0 {
             format!(

@@ -1,10 +1,10 @@
 //! `aqua study scene.toml --vary PATH=v1,v2,... [--metric M] --out DIR`: the accuracy–speed
-//! study of [`aqua_sim::study`], printed as it goes and written to `DIR/study.csv`,
+//! study of [`aqua_study::study`], printed as it goes and written to `DIR/study.csv`,
 //! `estimates.csv`, `study.json` and `error_vs_cost.png`.
 
 use crate::interrupted;
 use aqua_sim::Override;
-use aqua_sim::study::{Axis, Metric, Study, StudyObserver, StudyRun, StudySpec};
+use aqua_study::study::{Axis, Metric, Study, StudyObserver, StudyRun, StudySpec};
 use std::path::PathBuf;
 
 /// Flags of `aqua study`.
@@ -74,10 +74,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         metrics: a.metric,
         tolerance: a.tolerance,
     };
-    let study = aqua_sim::study::run_study(&spec, &mut Terminal { quiet: a.quiet })?;
-    aqua_sim::study::write_tables(&study, &a.out)?;
+    let study = aqua_study::study::run_study(&spec, &mut Terminal { quiet: a.quiet })?;
+    aqua_study::study::write_tables(&study, &a.out)?;
     let png = a.out.join("error_vs_cost.png");
-    aqua_sim::plot::plot_study(&study, &png)?;
+    aqua_study::plot::plot_study(&study, &png)?;
     print_study(&study);
     println!(
         "tables in {}, {}, {}; picture {}; study overhead beyond the runs {:.3} s of {:.2} s",

@@ -1,4 +1,4 @@
-//! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_sim::sweep`]), run on this
+//! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_study::sweep`]), run on this
 //! machine (`--local`, N child processes at a time on a rayon pool), or handed to GNU parallel
 //! (`--emit parallel`) or a Slurm job array (`--emit slurm`); `--case K` runs one case and is
 //! what every engine calls. Without a mode it lists the cases.
@@ -7,7 +7,7 @@ use crate::commands::run::run_scene;
 use crate::{InputError, interrupted};
 use anyhow::Context;
 use aqua_sim::Ending;
-use aqua_sim::sweep::{CaseRecord, Sweep};
+use aqua_study::sweep::{CaseRecord, Sweep};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -56,7 +56,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
     match a.emit {
         Some(Emit::Parallel) => {
             for k in 0..sweep.cases.len() {
-                println!("{}", case_command(&sweep, &a, &k.to_string())?);
+                println!(
+                    "{}",
+                    sweep.case_command(&exe()?, &k.to_string(), a.out.is_some())
+                );
             }
             eprintln!(
                 "# {} cases; run them with: aqua sweep {} --emit parallel | parallel --jobs N",
@@ -66,7 +69,13 @@ pub fn run(a: Args) -> anyhow::Result<()> {
             Ok(())
         }
         Some(Emit::Slurm) => {
-            print!("{}", slurm_script(&sweep, &a)?);
+            for k in 0..sweep.cases.len() {
+                // Slurm does not create the folder of an `--output` file.
+                let dir = sweep.case_dir(k);
+                std::fs::create_dir_all(&dir)
+                    .with_context(|| format!("creating {}", dir.display()))?;
+            }
+            print!("{}", sweep.slurm_script(&exe()?, a.out.is_some()));
             Ok(())
         }
         None if a.local => run_local(&sweep, a.jobs),
@@ -90,68 +99,9 @@ fn list(sweep: &Sweep) {
     println!("run them with --local [--jobs N], or emit them with --emit parallel | --emit slurm");
 }
 
-/// A word for a POSIX shell: single-quoted unless it is plainly safe.
-fn shell_word(s: &str) -> String {
-    if !s.is_empty()
-        && s.chars()
-            .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
-    {
-        s.to_string()
-    } else {
-        format!("'{}'", s.replace('\'', "'\\''"))
-    }
-}
-
-/// `aqua sweep FILE --case K [--out DIR]` with absolute paths, for another process or host
-/// (`k` may be a shell expression such as `"$SLURM_ARRAY_TASK_ID"`, passed through as is).
-fn case_command(sweep: &Sweep, a: &Args, k: &str) -> anyhow::Result<String> {
-    let exe = std::env::current_exe().context("finding the aqua executable")?;
-    let mut cmd = format!(
-        "{} sweep {} --case {k}",
-        shell_word(&exe.to_string_lossy()),
-        shell_word(&sweep.file.to_string_lossy())
-    );
-    if a.out.is_some() {
-        cmd += &format!(" --out {}", shell_word(&sweep.out.to_string_lossy()));
-    }
-    Ok(cmd)
-}
-
-/// A Slurm job-array script: one case per array task, Slurm's own output of each task in the
-/// case's folder (created here: Slurm does not create the folder of an `--output` file).
-fn slurm_script(sweep: &Sweep, a: &Args) -> anyhow::Result<String> {
-    for k in 0..sweep.cases.len() {
-        let dir = sweep.case_dir(k);
-        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-    }
-    let stem = sweep
-        .file
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "sweep".into());
-    let job: String = stem
-        .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
-        .collect();
-    Ok(format!(
-        "#!/bin/bash\n\
-         # {n} load cases of {scene}: one Slurm array task per case.\n\
-         # Submit with: sbatch {job}.sbatch   (collect afterwards: aqua collect {out})\n\
-         #SBATCH --job-name=aqua-{job}\n\
-         #SBATCH --array=0-{last}\n\
-         #SBATCH --ntasks=1\n\
-         #SBATCH --cpus-per-task=1\n\
-         #SBATCH --output={out_dir}/case_%4a/slurm-%A_%a.log\n\
-         set -euo pipefail\n\
-         : \"${{SLURM_ARRAY_TASK_ID:?run this script with sbatch (or set SLURM_ARRAY_TASK_ID)}}\"\n\
-         exec {cmd}\n",
-        n = sweep.cases.len(),
-        out_dir = sweep.out.display(),
-        scene = sweep.scene.display(),
-        out = sweep.out.display(),
-        last = sweep.cases.len() - 1,
-        cmd = case_command(sweep, a, "\"$SLURM_ARRAY_TASK_ID\"")?,
-    ))
+/// This executable, which the emitted commands call.
+fn exe() -> anyhow::Result<PathBuf> {
+    std::env::current_exe().context("finding the aqua executable")
 }
 
 /// The case's `aqua.log`: every line is written there and to stderr (a tee of the case's own

@@ -279,10 +279,10 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         print!("{}", format_summary(&summary, measured.as_ref()));
     }
     if let Some(path) = &a.component_table {
-        aqua_sim::files::write_component_table(&sea, path)?;
+        aqua_sim::write_component_table(&sea, path)?;
     }
     if let Some(path) = &a.csv {
-        aqua_sim::files::write_kinematics(&sea, &points, a.duration, a.dt, path)?;
+        aqua_sim::write_kinematics(&sea, &points, a.duration, a.dt, path)?;
         if !a.json {
             println!(
                 "wrote {} ({} points x {} steps)",

@@ -13,7 +13,7 @@ mod water;
 
 pub use mesh::{BuiltFarm, build_mesh, resolve_ref};
 pub use structure::Prescribed;
-pub use water::{LoadCell, default_wake};
+pub use water::LoadCell;
 
 use crate::design::{DesignChecks, LineLength};
 use crate::diagnostic::Diagnostic;
@@ -105,13 +105,8 @@ pub struct NetCells {
     pub closed: bool,
 }
 
-/// Builds the whole model of a scene, prescribed nodes moving as the scene says.
-pub fn build(scene: &Scene) -> Result<Built> {
-    build_with(scene, Prescribed::AsScene)
-}
-
 /// Builds the whole model of a scene; `prescribed` says who moves the prescribed nodes.
-pub fn build_with(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
+pub fn build(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
     let file = scene.path.display().to_string();
     // Sea errors first: they are independent of the structure (the real build needs the
     // structure's top for the irregular band).

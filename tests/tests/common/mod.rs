@@ -69,10 +69,10 @@ pub fn static_solve(
     aqua_fem::StaticSolution,
 ) {
     let scene = aqua_sim::read_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let prep = aqua_sim::prepare_scene(scene, aqua_sim::Prescribed::AsScene)
+    let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(scene))
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, aqua_env::Phase::Static).unwrap();
-    let sol = aqua_sim::solvers::static_equilibrium(
+    let sol = aqua_sim::static_equilibrium(
         &prep.built.model,
         &prep.built.mesh,
         &mut loads,

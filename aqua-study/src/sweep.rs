@@ -23,11 +23,12 @@
 //! `case.json` (its parameters, status and wall time), so [`collect`] gives the same table
 //! whichever engine ran the cases.
 
-use crate::error::{Result, SimError};
-use crate::extremes::read_extremes;
-use crate::overrides::{Override, check_path_syntax};
 use crate::plot::SummaryTable;
-use crate::study::{csv_line, value_text};
+use crate::study::value_text;
+use aqua_sim::csv_line;
+use aqua_sim::extremes::read_extremes;
+use aqua_sim::overrides::{Override, check_path_syntax};
+use aqua_sim::{Result, SimError};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -108,7 +109,7 @@ impl Sweep {
             path: file.to_path_buf(),
             source,
         })?;
-        let text = crate::scene::read_text(&file)?;
+        let text = aqua_sim::scene::read_text(&file)?;
         let err = |m: String| SimError::input(format!("{}: {m}", file.display()));
         let raw: RawCases = toml::from_str(&text).map_err(|e| err(e.to_string()))?;
         let dir = file.parent().unwrap_or(Path::new("."));
@@ -159,7 +160,7 @@ impl Sweep {
             cases,
         };
         for c in &sweep.cases {
-            crate::scene::read_scene_with(&sweep.scene, &c.overrides).map_err(|e| {
+            aqua_sim::scene::read_scene_with(&sweep.scene, &c.overrides).map_err(|e| {
                 SimError::input(format!(
                     "{}: case {} ({}): {}",
                     sweep.file.display(),
@@ -175,6 +176,55 @@ impl Sweep {
     /// The folder of case `k`.
     pub fn case_dir(&self, k: usize) -> PathBuf {
         self.out.join(case_folder(k))
+    }
+
+    /// `EXE sweep FILE --case K [--out DIR]` with absolute paths, for another process or host
+    /// (`k` may be a shell expression such as `"$SLURM_ARRAY_TASK_ID"`, passed through as is;
+    /// `--out` when the sweep was given one).
+    pub fn case_command(&self, exe: &Path, k: &str, with_out: bool) -> String {
+        let mut cmd = format!(
+            "{} sweep {} --case {k}",
+            shell_word(&exe.to_string_lossy()),
+            shell_word(&self.file.to_string_lossy())
+        );
+        if with_out {
+            cmd += &format!(" --out {}", shell_word(&self.out.to_string_lossy()));
+        }
+        cmd
+    }
+
+    /// A Slurm job-array script: one case per array task calling `exe`, Slurm's own output
+    /// of each task in the case's folder (which the caller creates: Slurm does not create
+    /// the folder of an `--output` file).
+    pub fn slurm_script(&self, exe: &Path, with_out: bool) -> String {
+        let stem = self
+            .file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "sweep".into());
+        let job: String = stem
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        format!(
+            "#!/bin/bash\n\
+             # {n} load cases of {scene}: one Slurm array task per case.\n\
+             # Submit with: sbatch {job}.sbatch   (collect afterwards: aqua collect {out})\n\
+             #SBATCH --job-name=aqua-{job}\n\
+             #SBATCH --array=0-{last}\n\
+             #SBATCH --ntasks=1\n\
+             #SBATCH --cpus-per-task=1\n\
+             #SBATCH --output={out_dir}/case_%4a/slurm-%A_%a.log\n\
+             set -euo pipefail\n\
+             : \"${{SLURM_ARRAY_TASK_ID:?run this script with sbatch (or set SLURM_ARRAY_TASK_ID)}}\"\n\
+             exec {cmd}\n",
+            n = self.cases.len(),
+            out_dir = self.out.display(),
+            scene = self.scene.display(),
+            out = self.out.display(),
+            last = self.cases.len() - 1,
+            cmd = self.case_command(exe, "\"$SLURM_ARRAY_TASK_ID\"", with_out),
+        )
     }
 }
 
@@ -443,7 +493,7 @@ fn collect_one(folder: &Path) -> Result<Collected> {
         ("static+dynamic", n) if n > 1 => &table.rows[1..],
         _ => &table.rows[..],
     };
-    // The extremes over every accepted step, where the run wrote them (crate::extremes).
+    // The extremes over every accepted step, where the run wrote them (aqua_sim::extremes).
     let extremes = read_extremes(folder);
     c.every_step = extremes.is_some();
     for (k, col) in table.columns.iter().enumerate() {
@@ -546,6 +596,18 @@ impl Collection {
                 })
             })
             .collect()
+    }
+}
+
+/// A word for a POSIX shell: single-quoted unless it is plainly safe.
+fn shell_word(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
     }
 }
 

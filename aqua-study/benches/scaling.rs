@@ -12,7 +12,7 @@
 //! `scaling` folder in the target directory). The criterion measurement is the per-step time of
 //! the 2-copy scene.
 
-use aqua_sim::{Observer, Override, Prepared, Simulation, prepare_with};
+use aqua_sim::{Observer, Override, PrepareOptions, Prepared, Simulation};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -35,7 +35,7 @@ fn prepare(file: &str, set: &[String]) -> Prepared {
     ];
     all.extend(set.iter().cloned());
     let set: Vec<Override> = all.iter().map(|s| s.parse().unwrap()).collect();
-    prepare_with(&example(file), &set).expect("scene")
+    aqua_sim::prepare(PrepareOptions::file(&example(file)).with_overrides(&set)).expect("scene")
 }
 
 /// One measured case.
@@ -132,7 +132,7 @@ fn write(pts: &[Point]) {
                 "cage" => "reference cage, element length 5 / 2.5 / 1.25 m",
                 _ => "2 … 16 reference cages in one scene",
             };
-            aqua_sim::plot::Series::new(
+            aqua_study::plot::Series::new(
                 name,
                 pts.iter()
                     .filter(|p| p.family == *f)
@@ -142,7 +142,7 @@ fn write(pts: &[Point]) {
         })
         .collect();
     let png = dir.join("scaling.png");
-    aqua_sim::plot::loglog_chart(
+    aqua_study::plot::loglog_chart(
         &png,
         "Time per Newton iteration of a dynamic step (HHT-α, Δt = 0.1 s, 2 cores)",
         "unknowns (3 × nodes)",

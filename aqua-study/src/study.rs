@@ -28,14 +28,14 @@
 //! A metric whose estimate is negligible (below 1e-9 of the largest metric of the same kind) has
 //! no relative error and is left out of the recommendation.
 
-use crate::check::free_dofs;
-use crate::error::{Result, SimError};
-use crate::extremes::Extreme;
-use crate::overrides::{Override, check_path_syntax, parse_value};
-use crate::plan::prepare_with;
-use crate::post::SummaryRow;
-use crate::run::{Ending, Frame, Observer, Simulation};
-use crate::scene::{AnalysisKind, read_scene_with};
+use aqua_sim::Extreme;
+use aqua_sim::check::free_dofs;
+use aqua_sim::overrides::{Override, check_path_syntax, parse_value};
+use aqua_sim::scene::{AnalysisKind, read_scene_with};
+use aqua_sim::{Ending, Frame, Observer, Simulation};
+use aqua_sim::{PrepareOptions, prepare};
+use aqua_sim::{Result, SimError};
+use aqua_sim::{SummaryRow, csv_line};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -47,7 +47,7 @@ use toml::Value;
 /// One ladder: a scene path (or alias) and its values from coarse to fine.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Axis {
-    /// Dotted path or alias (crate::overrides).
+    /// Dotted path or alias (aqua_sim::overrides).
     pub path: String,
     /// The values, coarse to fine (TOML text).
     #[serde(serialize_with = "values_text")]
@@ -191,7 +191,7 @@ pub struct RunRows {
     pub first_dynamic: usize,
     /// True when the analysis has a dynamic part.
     pub dynamic: bool,
-    /// Extremes over every accepted step of the dynamic part ([`crate::extremes`]), by
+    /// Extremes over every accepted step of the dynamic part ([`aqua_sim::extremes`]), by
     /// column (incl. `F_net` and `R`); empty when not known.
     pub extremes: BTreeMap<String, Extreme>,
 }
@@ -221,7 +221,7 @@ impl RunRows {
             s => s,
         };
         // Max, min and absmax are taken over every accepted step where known: a peak between
-        // two output steps counts (crate::extremes).
+        // two output steps counts (aqua_sim::extremes).
         if let Some(e) = self.extremes.get(&m.column) {
             match stat {
                 Stat::Max => return Ok(e.max),
@@ -459,14 +459,15 @@ fn run_one(spec: &StudySpec, index: usize, setting: &[usize], obs: &dyn StudyObs
         errors: vec![],
         rows: None,
     };
-    let prep = match prepare_with(&spec.scene, &spec.overrides(setting)) {
-        Ok(p) => p,
-        Err(e) => {
-            run.reason = Some(e.chain());
-            run.wall_s = t0.elapsed().as_secs_f64();
-            return run;
-        }
-    };
+    let prep =
+        match prepare(PrepareOptions::file(&spec.scene).with_overrides(&spec.overrides(setting))) {
+            Ok(p) => p,
+            Err(e) => {
+                run.reason = Some(e.chain());
+                run.wall_s = t0.elapsed().as_secs_f64();
+                return run;
+            }
+        };
     run.dofs = free_dofs(&prep.built);
     let mut collector = Collector {
         rows: vec![],
@@ -835,26 +836,6 @@ pub fn estimates_csv(study: &Study) -> String {
         out += &csv_line(&row);
     }
     out
-}
-
-/// One CSV line (with its line break) of the fields, each quoted when it needs it.
-pub fn csv_line(fields: &[String]) -> String {
-    let mut line = fields
-        .iter()
-        .map(|f| csv_field(f))
-        .collect::<Vec<_>>()
-        .join(",");
-    line.push('\n');
-    line
-}
-
-/// A CSV field, quoted when it holds a comma, a quote or a line break.
-pub fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\"").replace('\n', " "))
-    } else {
-        s.to_string()
-    }
 }
 
 #[cfg(test)]

@@ -9,9 +9,9 @@
 //! function returns what it plotted (the series' extremes), so tests compare the plotted data,
 //! not pixels, with the tables.
 
-use crate::error::{Result, SimError};
-use crate::extremes::read_extremes;
 use crate::study::Study;
+use aqua_sim::extremes::read_extremes;
+use aqua_sim::{Result, SimError};
 use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
 use serde::Serialize;
