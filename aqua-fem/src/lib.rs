@@ -152,6 +152,10 @@ pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
+pub use seabed::{
+    DEFAULT_BED_DAMPING, DEFAULT_BED_DAMPING_DEPTH, DEFAULT_BED_STIFFNESS, InvalidSeabedKey,
+    SeabedSettings,
+};
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,
