@@ -135,8 +135,9 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
-    LinearSolverStats, MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
+    DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_CREATED,
+    ENERGY_GROWTH_TOL, Energies, LinearSolverKind, LinearSolverStats, MassMatrix, StepControl,
+    StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
