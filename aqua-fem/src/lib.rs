@@ -84,7 +84,7 @@
 //!
 //! ## Files
 //! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
-//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
+//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy; `[sea.seabed]`'s `SeabedSettings` and every seabed default), `friction.rs`
 //! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
 //! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`, `net_triangles.rs`,
 //! `load_derivatives.rs`, `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`

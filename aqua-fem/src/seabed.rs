@@ -58,14 +58,14 @@ impl Default for SeabedSettings {
 
 /// A `[sea.seabed]` key whose value is out of range: the key (without its table), the value
 /// and what would be valid.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct InvalidSeabedKey {
     /// Key name inside `[sea.seabed]`, e.g. `kbot`.
     pub key: &'static str,
     /// The value given.
     pub value: f64,
     /// What would be valid.
-    pub valid: &'static str,
+    pub valid: String,
 }
 
 impl SeabedSettings {
@@ -76,7 +76,13 @@ impl SeabedSettings {
 
     /// Checks every key: k_b, c_b ≥ 0, δ_c > 0, μ ≥ 0 and v_c > 0, all finite.
     pub fn validate(&self) -> Result<(), InvalidSeabedKey> {
-        let bad = |key, value, valid| Err(InvalidSeabedKey { key, value, valid });
+        let bad = |key, value, valid: &str| {
+            Err(InvalidSeabedKey {
+                key,
+                value,
+                valid: valid.to_string(),
+            })
+        };
         for (key, v) in [("kbot", self.kbot), ("cbot", self.cbot)] {
             if !(v >= 0.0 && v.is_finite()) {
                 return bad(key, v, "a finite number >= 0");
@@ -87,7 +93,9 @@ impl SeabedSettings {
             return bad(
                 "damping_depth",
                 dc,
-                "a penetration in m, finite and > 0 (default 0.01)",
+                &format!(
+                    "a penetration in m, finite and > 0 (default {DEFAULT_BED_DAMPING_DEPTH})"
+                ),
             );
         }
         let mut mus = vec![("friction_axial", self.friction_axial)];
@@ -109,7 +117,7 @@ impl SeabedSettings {
             return bad(
                 "slip_velocity",
                 vc,
-                "a velocity in m/s, finite and > 0 (default 0.01)",
+                &format!("a velocity in m/s, finite and > 0 (default {DEFAULT_SLIP_VELOCITY})"),
             );
         }
         Ok(())

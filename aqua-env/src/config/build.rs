@@ -442,6 +442,24 @@ ramp_time = 10.0
     }
 
     #[test]
+    fn bad_seabed_keys_name_key_value_and_range() {
+        let e = parse("depth = 10\n[seabed]\nkbot = -1.0\n").unwrap_err();
+        assert_eq!(e, "sea.seabed.kbot = -1: a finite number >= 0");
+        let e = parse("depth = 10\n[seabed]\nslip_velocity = 0.0\n").unwrap_err();
+        assert_eq!(
+            e,
+            "sea.seabed.slip_velocity = 0: a velocity in m/s, finite and > 0 (default 0.01)"
+        );
+        let e = parse("depth = 10\n[seabed]\nfriction_transverse = -0.5\n").unwrap_err();
+        assert!(
+            e.starts_with("sea.seabed.friction_transverse = -0.5: a friction"),
+            "{e}"
+        );
+        let e = parse("depth = 10\n[seabed]\nkbott = 1.0\n").unwrap_err();
+        assert!(e.contains("kbott") && e.contains("kbot"), "{e}");
+    }
+
+    #[test]
     fn stokes_validity_warnings() {
         let base = |h: f64| {
             format!(
