@@ -10,8 +10,7 @@
 use crate::error::{Result, invalid};
 use serde::{Deserialize, Serialize};
 
-/// Default regularisation slip velocity v_c [m/s].
-pub const DEFAULT_SLIP_VELOCITY: f64 = 1e-2;
+pub use crate::seabed::DEFAULT_SLIP_VELOCITY;
 
 /// Friction coefficients of the seabed and the regularisation velocity.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

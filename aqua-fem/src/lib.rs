@@ -84,7 +84,7 @@
 //!
 //! ## Files
 //! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
-//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy), `friction.rs`
+//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy; `[sea.seabed]`'s `SeabedSettings` and every seabed default), `friction.rs`
 //! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
 //! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`, `net_triangles.rs`,
 //! `load_derivatives.rs`, `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
@@ -135,8 +135,9 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
-    LinearSolverStats, MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
+    DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_CREATED,
+    ENERGY_GROWTH_TOL, Energies, LinearSolverKind, LinearSolverStats, MassMatrix, StepControl,
+    StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
@@ -152,6 +153,10 @@ pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
+pub use seabed::{
+    DEFAULT_BED_DAMPING, DEFAULT_BED_DAMPING_DEPTH, DEFAULT_BED_STIFFNESS, InvalidSeabedKey,
+    SeabedSettings,
+};
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,

@@ -7,6 +7,7 @@ use crate::friction::SeabedFriction;
 use crate::motion::Motion;
 use crate::net_triangle::{NetTriangle, NetTriangleGroup, NetTriangleTwines};
 use crate::rod::{RodEdge, RodVertex};
+use crate::seabed::SeabedSettings;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -20,8 +21,7 @@ pub const DEFAULT_WATER_DENSITY: f64 = aqua_constants::SEA_WATER_DENSITY;
 /// Default compression ratio r_c of cable elements.
 pub const DEFAULT_COMPRESSION_RATIO: f64 = 0.0;
 
-/// Default penetration over which the seabed damping ramps in [m].
-pub const DEFAULT_BED_DAMPING_DEPTH: f64 = 1e-2;
+pub use crate::seabed::DEFAULT_BED_DAMPING_DEPTH;
 
 fn default_damping_depth() -> f64 {
     DEFAULT_BED_DAMPING_DEPTH
@@ -32,12 +32,12 @@ fn default_damping_depth() -> f64 {
 pub struct Seabed {
     /// Water depth [m] (> 0): the seabed plane is z = −depth.
     pub depth: f64,
-    /// Normal stiffness k_b per unit contact area [Pa/m]. Default 3e6.
+    /// Normal stiffness k_b per unit contact area [Pa/m]. Default: [`SeabedSettings`]'s.
     pub stiffness: f64,
-    /// Normal damping c_b per unit contact area [Pa·s/m]. Default 3e5.
+    /// Normal damping c_b per unit contact area [Pa·s/m]. Default: [`SeabedSettings`]'s.
     pub damping: f64,
-    /// Penetration δ_c over which the damping ramps in linearly from zero [m] (> 0). Default
-    /// 1e-2. Keeps the contact force continuous at touchdown (docs/theory/fem.md#seabed-contact).
+    /// Penetration δ_c over which the damping ramps in linearly from zero [m] (> 0). Default:
+    /// [`SeabedSettings`]'s. Keeps the contact force continuous at touchdown (docs/theory/fem.md#seabed-contact).
     #[serde(default = "default_damping_depth")]
     pub damping_depth: f64,
     /// Regularised Coulomb friction (docs/theory/fem.md#seabed-friction). Default off.
@@ -46,15 +46,9 @@ pub struct Seabed {
 }
 
 impl Seabed {
-    /// Seabed at depth [m] with the default stiffness and damping, no friction.
+    /// Seabed at depth [m] with the default constants of [`SeabedSettings`] (no friction).
     pub fn new(depth: f64) -> Self {
-        Self {
-            depth,
-            stiffness: 3e6,
-            damping: 3e5,
-            damping_depth: DEFAULT_BED_DAMPING_DEPTH,
-            friction: SeabedFriction::default(),
-        }
+        SeabedSettings::default().seabed(depth)
     }
 
     /// Sets the friction.

@@ -3,9 +3,141 @@
 //! the energy-consistent midpoint rule uses (docs/theory/fem.md#energy-consistent-midpoint).
 //! One definition for the statics' merit, the implicit and explicit schemes' evaluation
 //! (`System::evaluate`), the explicit stable step and the line relaxation's local solves.
-//! Friction on the bed is `friction.rs`.
+//! Friction on the bed is `friction.rs`. The scene's `[sea.seabed]` keys and every seabed
+//! default are [`SeabedSettings`], here.
 
-use crate::model::Model;
+use crate::friction::SeabedFriction;
+use crate::model::{Model, Seabed};
+use serde::{Deserialize, Serialize};
+
+/// Default normal stiffness k_b per unit contact area [Pa/m] (MoorDyn's `kBot` order).
+pub const DEFAULT_BED_STIFFNESS: f64 = 3e6;
+/// Default normal damping c_b per unit contact area [Pa·s/m].
+pub const DEFAULT_BED_DAMPING: f64 = 3e5;
+/// Default penetration over which the seabed damping ramps in [m].
+pub const DEFAULT_BED_DAMPING_DEPTH: f64 = 1e-2;
+/// Default regularisation slip velocity v_c of the seabed friction [m/s].
+pub const DEFAULT_SLIP_VELOCITY: f64 = 1e-2;
+
+/// `[sea.seabed]` (docs/guide/scene.md#sea, docs/theory/fem.md#seabed-contact,
+/// #seabed-friction): the contact and friction constants of the flat seabed at z = −depth, with
+/// the scene's key names. The one owner of the seabed's schema and defaults: a scene's sea
+/// deserialises its `[sea.seabed]` table into this type, and [`Seabed::new`] starts from
+/// [`SeabedSettings::default`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SeabedSettings {
+    /// k_b [Pa/m] (default [`DEFAULT_BED_STIFFNESS`]).
+    pub kbot: f64,
+    /// c_b [Pa·s/m] (default [`DEFAULT_BED_DAMPING`]).
+    pub cbot: f64,
+    /// Penetration δ_c over which c_b ramps in from zero [m] (default
+    /// [`DEFAULT_BED_DAMPING_DEPTH`]), so that the contact force is continuous at touchdown.
+    pub damping_depth: f64,
+    /// Axial seabed friction coefficient μ_a, along the line (default 0: no friction).
+    pub friction_axial: f64,
+    /// Transverse seabed friction coefficient μ_t (default: `friction_axial`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_transverse: Option<f64>,
+    /// Slip velocity v_c of the regularised friction [m/s] (default [`DEFAULT_SLIP_VELOCITY`]).
+    pub slip_velocity: f64,
+}
+
+impl Default for SeabedSettings {
+    fn default() -> Self {
+        Self {
+            kbot: DEFAULT_BED_STIFFNESS,
+            cbot: DEFAULT_BED_DAMPING,
+            damping_depth: DEFAULT_BED_DAMPING_DEPTH,
+            friction_axial: 0.0,
+            friction_transverse: None,
+            slip_velocity: DEFAULT_SLIP_VELOCITY,
+        }
+    }
+}
+
+/// A `[sea.seabed]` key whose value is out of range: the key (without its table), the value
+/// and what would be valid.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InvalidSeabedKey {
+    /// Key name inside `[sea.seabed]`, e.g. `kbot`.
+    pub key: &'static str,
+    /// The value given.
+    pub value: f64,
+    /// What would be valid.
+    pub valid: String,
+}
+
+impl SeabedSettings {
+    /// μ_t: `friction_transverse`, or `friction_axial` when it is not given.
+    pub fn transverse_friction(&self) -> f64 {
+        self.friction_transverse.unwrap_or(self.friction_axial)
+    }
+
+    /// Checks every key: k_b, c_b ≥ 0, δ_c > 0, μ ≥ 0 and v_c > 0, all finite.
+    pub fn validate(&self) -> Result<(), InvalidSeabedKey> {
+        let bad = |key, value, valid: &str| {
+            Err(InvalidSeabedKey {
+                key,
+                value,
+                valid: valid.to_string(),
+            })
+        };
+        for (key, v) in [("kbot", self.kbot), ("cbot", self.cbot)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return bad(key, v, "a finite number >= 0");
+            }
+        }
+        let dc = self.damping_depth;
+        if !(dc > 0.0 && dc.is_finite()) {
+            return bad(
+                "damping_depth",
+                dc,
+                &format!(
+                    "a penetration in m, finite and > 0 (default {DEFAULT_BED_DAMPING_DEPTH})"
+                ),
+            );
+        }
+        let mut mus = vec![("friction_axial", self.friction_axial)];
+        if let Some(mu) = self.friction_transverse {
+            mus.push(("friction_transverse", mu));
+        }
+        for (key, mu) in mus {
+            if !(mu >= 0.0 && mu.is_finite()) {
+                return bad(
+                    key,
+                    mu,
+                    "a friction coefficient, finite and >= 0 (0 = no friction; chain on sand \
+                     about 0.7 axial, 1.0 transverse)",
+                );
+            }
+        }
+        let vc = self.slip_velocity;
+        if !(vc > 0.0 && vc.is_finite()) {
+            return bad(
+                "slip_velocity",
+                vc,
+                &format!("a velocity in m/s, finite and > 0 (default {DEFAULT_SLIP_VELOCITY})"),
+            );
+        }
+        Ok(())
+    }
+
+    /// The structure's seabed at z = −depth [m] with these constants.
+    pub fn seabed(&self, depth: f64) -> Seabed {
+        Seabed {
+            depth,
+            stiffness: self.kbot,
+            damping: self.cbot,
+            damping_depth: self.damping_depth,
+            friction: SeabedFriction {
+                axial: self.friction_axial,
+                transverse: self.transverse_friction(),
+                slip_velocity: self.slip_velocity,
+            },
+        }
+    }
+}
 
 /// The seabed's normal law (docs/theory/fem.md#seabed-contact).
 #[derive(Debug, Clone, Copy)]

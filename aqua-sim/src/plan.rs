@@ -247,7 +247,7 @@ fn alpha(scene: &Scene) -> Result<f64> {
         }
         (None, Some(r)) => DynamicSettings::alpha_from_rho_inf(r)
             .map_err(|e| SimError::at(format!("{file}: analysis.dynamic.rho_inf"), e)),
-        (None, None) => Ok(DynamicSettings::new(DEFAULT_DT, 1.0).alpha),
+        (None, None) => Ok(aqua_fem::DEFAULT_ALPHA),
     }
 }
 
@@ -256,8 +256,8 @@ fn theta(scene: &Scene) -> Result<f64> {
     let d = &scene.analysis.dynamic;
     let file = scene.path.display();
     match d.theta {
-        None => Ok(0.5),
-        Some(t) if d.scheme != crate::scene::Scheme::Midpoint && t != 0.5 => {
+        None => Ok(aqua_fem::DEFAULT_THETA),
+        Some(t) if d.scheme != crate::scene::Scheme::Midpoint && t != aqua_fem::DEFAULT_THETA => {
             let hint = if d.scheme == crate::scene::Scheme::Hht {
                 "HHT-alpha damps through alpha or rho_inf"
             } else {

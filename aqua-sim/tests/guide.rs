@@ -1,6 +1,6 @@
-//! docs/guide/scene.md documents every scene key: the key list comes from the parser itself
-//! ([`aqua_sim::scene::scene_keys`], which reads back the schema types' own field lists), so a
-//! key added to the schema without a line in the guide fails here, and so does a guide line for
+//! docs/guide/scene.md documents every scene key: the key list is the schema's own
+//! ([`aqua_sim::scene::scene_keys`], written out per schema type and checked against what the
+//! parser accepts by the unit tests of `aqua-sim/src/scene/keys.rs`), so a key added to the schema without a line in the guide fails here, and so does a guide line for
 //! a key the parser does not accept.
 
 use std::collections::{BTreeMap, BTreeSet};

@@ -245,3 +245,154 @@ fn pipe_walls_follow_the_standard_dimension_ratio() {
         assert!(err.contains(part), "{err}");
     }
 }
+
+/// The number in the default column of `key`'s row in the table under `heading` of the user
+/// guide (docs/guide/scene.md): the documented default, written independently of the code.
+fn guide_default(heading: &str, key: &str) -> f64 {
+    let guide = std::fs::read_to_string(root().join("docs/guide/scene.md")).unwrap();
+    let start = guide
+        .lines()
+        .position(|l| l.starts_with('#') && l.contains(heading))
+        .unwrap_or_else(|| panic!("no heading {heading} in the guide"));
+    let row = guide
+        .lines()
+        .skip(start + 1)
+        .take_while(|l| !l.starts_with('#'))
+        .find(|l| l.starts_with(&format!("| `{key}` |")))
+        .unwrap_or_else(|| panic!("no row for {key} under {heading}"));
+    let default = row.split('|').nth(3).unwrap().trim();
+    let number = default.split_whitespace().next().unwrap();
+    number
+        .parse()
+        .unwrap_or_else(|_| panic!("{heading} {key}: default {default:?} is not a number"))
+}
+
+/// A cage scene with the given extra `[sea]` keys and tables.
+fn cage_scene(sea: &str, tail: &str) -> String {
+    format!(
+        "[sea]\ndepth = 40.0\n{sea}\n[[cage]]\ntype = \"CSM\"\ncircumference = 60.0\n\
+         depth = 6.0\ncone_depth = 2.0\nelement_length = 3.0\n{tail}"
+    )
+}
+
+/// The seabed's constants have one definition, aqua-fem's `SeabedSettings`: a scene without
+/// `[sea.seabed]`, an empty `[sea.seabed]`, a structure built without a scene (`Seabed::new`),
+/// the friction's and the contact law's own defaults all give the same seabed, and it is the
+/// one the guide documents.
+#[test]
+fn the_seabed_defaults_have_one_definition() {
+    use aqua_fem::{Seabed, SeabedFriction, SeabedSettings};
+    let d = SeabedSettings::default();
+    let h = 40.0;
+    // the documented values (docs/guide/scene.md, `[sea.seabed]`)
+    let doc = |k| guide_default("`[sea.seabed]`", k);
+    assert_eq!(d.kbot, doc("kbot"));
+    assert_eq!(d.cbot, doc("cbot"));
+    assert_eq!(d.damping_depth, doc("damping_depth"));
+    assert_eq!(d.friction_axial, doc("friction_axial"));
+    assert_eq!(d.slip_velocity, doc("slip_velocity"));
+    assert_eq!(d.transverse_friction(), d.friction_axial);
+    // the structure's own routes
+    assert_eq!(Seabed::new(h), d.seabed(h));
+    assert_eq!(SeabedFriction::default(), d.seabed(h).friction);
+    let partial: Seabed = serde_json::from_str(&format!(
+        "{{\"depth\": {h}, \"stiffness\": {}, \"damping\": {}}}",
+        d.kbot, d.cbot
+    ))
+    .unwrap();
+    assert_eq!(partial, d.seabed(h));
+    let empty: SeabedSettings = serde_json::from_str("{}").unwrap();
+    assert_eq!(empty, d);
+    // the scene's routes: no table, an empty table
+    let dir = scratch("defaults-seabed");
+    for (name, sea) in [("none", ""), ("empty", "[sea.seabed]\n")] {
+        let prep = prepare_text(&dir, name, &cage_scene(sea, ""));
+        assert_eq!(prep.scene.sea.seabed, d, "{name}");
+        assert_eq!(
+            prep.built.model.environment().seabed,
+            Some(Seabed::new(h)),
+            "{name}"
+        );
+    }
+    // a key given changes that key only
+    let prep = prepare_text(
+        &dir,
+        "kbot",
+        &cage_scene("[sea.seabed]\nkbot = 1e5\nfriction_axial = 0.7\n", ""),
+    );
+    let want = SeabedSettings {
+        kbot: 1e5,
+        friction_axial: 0.7,
+        ..d
+    };
+    assert_eq!(prep.built.model.environment().seabed, Some(want.seabed(h)));
+    assert_eq!(want.seabed(h).friction.transverse, 0.7);
+}
+
+/// g and ρ_w have one value per scene on every path: the sea the hydrodynamic loads read, the
+/// structure's environment, and, without `[sea]` keys, the documented defaults.
+#[test]
+fn the_fluid_constants_have_one_value_on_every_path() {
+    let dir = scratch("defaults-fluid");
+    let doc_g = guide_default("`[sea]`", "gravity");
+    let doc_rho = guide_default("`[sea.water]`", "density");
+    for (name, sea, g, rho) in [
+        ("default", "", doc_g, doc_rho),
+        (
+            "fresh",
+            "gravity = 9.78\n[sea.water]\ndensity = 1000.0\n",
+            9.78,
+            1000.0,
+        ),
+    ] {
+        let prep = prepare_text(&dir, name, &cage_scene(sea, ""));
+        let sea = prep.built.sea.constants();
+        let env = prep.built.model.environment();
+        assert_eq!((sea.gravity, sea.density), (g, rho), "{name}: the sea");
+        assert_eq!(
+            (env.gravity, env.water_density),
+            (g, rho),
+            "{name}: the structure"
+        );
+    }
+    assert_eq!(aqua_fem::Environment::default().gravity, doc_g);
+    assert_eq!(aqua_fem::Environment::default().water_density, doc_rho);
+    assert_eq!(aqua_env::Constants::default().gravity, doc_g);
+    assert_eq!(aqua_env::Constants::default().density, doc_rho);
+}
+
+/// The integrators' defaults have one definition, aqua-fem's `DynamicSettings`: the HHT α and
+/// the midpoint rule's θ a scene gets without the keys are the solver's own defaults and the
+/// guide's.
+#[test]
+fn the_scheme_defaults_have_one_definition() {
+    use aqua_fem::DynamicSettings;
+    use aqua_sim::plan::Integrator;
+    let fem = DynamicSettings::new(0.1, 1.0);
+    let doc = |k| guide_default("`[analysis.dynamic]`", k);
+    assert_eq!(fem.alpha, doc("alpha"));
+    assert_eq!(fem.theta, doc("theta"));
+    let dir = scratch("defaults-scheme");
+    let dynamic = |scheme: &str| {
+        format!(
+            "\n[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nscheme = \"{scheme}\"\nt_end = 1.0\n"
+        )
+    };
+    let prep = prepare_text(&dir, "hht", &cage_scene("", &dynamic("hht")));
+    assert_eq!(prep.plan.alpha, fem.alpha);
+    let Some(Integrator::Hht(s)) = &prep.plan.dynamics else {
+        panic!("hht: an implicit integrator")
+    };
+    assert_eq!((s.alpha, s.theta), (fem.alpha, fem.theta));
+    let prep = prepare_text(&dir, "midpoint", &cage_scene("", &dynamic("midpoint")));
+    let Some(Integrator::Hht(s)) = &prep.plan.dynamics else {
+        panic!("midpoint: an implicit integrator")
+    };
+    assert!(s.midpoint);
+    assert_eq!(s.theta, fem.theta);
+    // a settings record without θ (aqua-fem's serde default) has the same θ
+    let mut json = serde_json::to_value(&fem).unwrap();
+    json.as_object_mut().unwrap().remove("theta");
+    let back: DynamicSettings = serde_json::from_value(json).unwrap();
+    assert_eq!(back.theta, fem.theta);
+}

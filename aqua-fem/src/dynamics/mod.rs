@@ -14,7 +14,7 @@ mod step_control;
 
 pub use energy::{ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
-pub use settings::{DynamicSettings, LinearSolverKind, MassMatrix};
+pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
 
 use crate::error::{FemError, Result, invalid};

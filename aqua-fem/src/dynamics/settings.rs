@@ -59,7 +59,7 @@ pub struct DynamicSettings {
     /// chatter of slack elements) and a linear mode most at ωΔt = 2/(θ − ½) (spectral radius
     /// 0.60 at ωΔt = 8 for θ = 0.75, ⅓ at 4 for θ = 1), but not the ωΔt → ∞ limit, where one
     /// root tends to −1 (docs/theory/fem.md#energy-decaying-midpoint). Midpoint rule only.
-    #[serde(default = "half")]
+    #[serde(default = "default_theta")]
     pub theta: f64,
     /// How each Newton system is solved (docs/theory/fem.md#sparse-linear-algebra). Default
     /// [`LinearSolverKind::Symmetric`].
@@ -95,15 +95,20 @@ fn yes() -> bool {
     true
 }
 
-fn half() -> f64 {
-    0.5
+/// Default HHT α (our convention, α ∈ [0, 1/3]; ρ∞ = (1 − α)/(1 + α) ≈ 0.54).
+pub const DEFAULT_ALPHA: f64 = 0.3;
+/// Default weight θ of the midpoint rule: ½, the energy-conserving rule.
+pub const DEFAULT_THETA: f64 = 0.5;
+
+fn default_theta() -> f64 {
+    DEFAULT_THETA
 }
 
 impl DynamicSettings {
     /// Defaults with step dt [s] and end time t_end [s].
     pub fn new(dt: f64, t_end: f64) -> Self {
         Self {
-            alpha: 0.3,
+            alpha: DEFAULT_ALPHA,
             dt,
             t_end,
             dt_min: None,
@@ -116,7 +121,7 @@ impl DynamicSettings {
             fd_position_jacobian: false,
             reuse_factor: 1,
             midpoint: false,
-            theta: 0.5,
+            theta: DEFAULT_THETA,
             linear_solver: LinearSolverKind::Symmetric,
             line_relaxation: true,
         }
@@ -198,7 +203,7 @@ impl DynamicSettings {
                 "0.5 <= theta <= 1 (0.5 conserves the energy)",
             ));
         }
-        if !self.midpoint && self.theta != 0.5 {
+        if !self.midpoint && self.theta != DEFAULT_THETA {
             return Err(invalid(
                 "theta",
                 self.theta,

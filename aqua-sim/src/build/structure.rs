@@ -9,7 +9,7 @@ use crate::scene::{GroupSpec, Located, MotionKind, PrescribedSpec, Scene};
 use aqua_env::{Constants, Depth};
 use aqua_fem::{
     AxialDamping, CableSection, Dofs, Environment, ExternalMotion, GroupId, ModelBuilder, Motion,
-    NetGroupId, NetTriangleSection, PointBody, Seabed, SeabedFriction, UnstretchedLength,
+    NetGroupId, NetTriangleSection, PointBody, UnstretchedLength,
 };
 use aqua_hydro::assembly::PointElement;
 use aqua_hydro::{PointProps, PointShape};
@@ -56,17 +56,7 @@ pub(super) fn environment(scene: &Scene, constants: &Constants) -> Environment {
         gravity: constants.gravity,
         water_density: constants.density,
         seabed: match constants.depth {
-            Depth::Finite(h) => Some(Seabed {
-                depth: h,
-                stiffness: scene.sea.seabed.kbot,
-                damping: scene.sea.seabed.cbot,
-                damping_depth: scene.sea.seabed.damping_depth,
-                friction: SeabedFriction {
-                    axial: scene.sea.seabed.friction_axial,
-                    transverse: scene.sea.seabed.transverse_friction(),
-                    slip_velocity: scene.sea.seabed.slip_velocity,
-                },
-            }),
+            Depth::Finite(h) => Some(scene.sea.seabed.seabed(h)),
             Depth::Infinite => None,
         },
     }

@@ -39,7 +39,7 @@ pub(super) struct SlotKeys {
     empty: bool,
 }
 
-const SLOT_KEYS: &[&str] = &["row", "column", "empty"];
+pub(super) const SLOT_KEYS: &[&str] = &["row", "column", "empty"];
 
 /// The cage keys that give the size: a slot's replaces all of the farm cage's.
 const SIZE_KEYS: &[&str] = &["circumference", "diameter", "side"];
