@@ -120,6 +120,7 @@ mod dual;
 pub mod dynamics;
 pub mod error;
 pub mod explicit;
+mod failure;
 pub mod friction;
 mod line_relaxation;
 pub mod loads;
@@ -135,11 +136,12 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DynamicSettings, DynamicSolver, ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
+    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
     LinearSolverStats, MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
+pub use failure::{FailureKind, FailureReason, SchemeKind};
 pub use friction::{DEFAULT_SLIP_VELOCITY, SeabedFriction};
 pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};
 pub use model::{

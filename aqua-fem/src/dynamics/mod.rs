@@ -12,7 +12,7 @@ mod scheme;
 mod settings;
 mod step_control;
 
-pub use energy::{ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies};
+pub use energy::{ENERGY_GROWTH_TOL, Energies};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DynamicSettings, LinearSolverKind, MassMatrix};
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
