@@ -137,7 +137,7 @@ mod system;
 pub use bending::Hinge;
 pub use dynamics::{
     DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, LinearSolverKind,
-    LinearSolverStats, MassMatrix, StepControl, StepEvent, StepReport, TensionResolution,
+    LinearSolverStats, MassMatrix, Snapshot, StepControl, StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
@@ -149,7 +149,7 @@ pub use model::{
     DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
     RodSection, Seabed, Support, UnstretchedLength,
 };
-pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use motion::{ExternalMotion, Keyframes, Motion, TableSpline, smooth_ramp};
 pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };
