@@ -9,6 +9,13 @@
 //! c.close();
 //! ```
 //!
+//! Each call may take its own step; the solver advances with its own step (the scene's
+//! `analysis.dynamic.dt`, else the first call's) and lands on the call's end. A call that fails
+//! leaves the coupling where it was, to be retried with a smaller step (implicit schemes).
+//! [`Coupling::save`] and [`Coupling::restore`] keep and put back the whole state;
+//! [`Coupling::tensions`] and [`Coupling::positions`] read the structure mid-run, and
+//! [`Coupling::add_body`] groups points on a rigid body driven by its pose (`body.rs`).
+//!
 //! The points are the `[[prescribed]]` entries, named by their `nodes` reference (e.g.
 //! `"chain/fairlead"`); positions are absolute [m]. Between two calls the solver sees the
 //! cubic Hermite motion through the given positions and velocities (velocities not given are
@@ -16,23 +23,22 @@
 //! backward difference of the velocities). The force on a point is the force of the
 //! structure on whatever holds it, F = −R (R the support reaction of the run outputs) [N].
 //!
-//! The solver runs on its own thread, which owns the model (the integrators borrow it), so
-//! a `Coupling` can be kept by a caller with no lifetime, as a Python object.
+//! The solver runs on its own thread (`worker.rs`), which owns the model (the integrators
+//! borrow it), so a `Coupling` can be kept by a caller with no lifetime, as a Python object.
+
+mod body;
+mod worker;
+
+pub use body::{BodyTarget, CoupledBody, rotation};
 
 use crate::build::Prescribed;
 use crate::error::{Result, SimError};
-use crate::plan::{Integrator, Prepared, prepare_scene};
-use crate::run::water_loads;
-use crate::scene::{AnalysisKind, Scene};
-use crate::solvers::{Stepper, start_integrator, static_equilibrium};
-use aqua_env::Phase;
-use aqua_fem::{DynamicSettings, ExternalMotion, Outputs, State};
-
+use crate::plan::prepare_scene;
+use crate::scene::Scene;
+use aqua_fem::{ExternalMotion, Keyframes, Snapshot};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
-
-/// The end time given to the integrators of a coupling: the caller decides when to stop.
-const OPEN_END: f64 = 1e9;
+use worker::{Reply, Request, worker};
 
 /// A coupled point: a `[[prescribed]]` node group.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,30 +66,80 @@ pub struct Target {
 /// Forces on every coupled point, per node [N], in the order of [`Coupling::points`].
 pub type Forces = Vec<Vec<[f64; 3]>>;
 
-enum Request {
-    Init,
-    Step { t1: f64, dt: f64 },
-    Positions,
+/// The element tensions and what names them: element e joins `elements[e]` (mesh nodes, the
+/// order of [`Coupling::positions`]) and belongs to group `group_names[groups[e]]`
+/// ("object/group", as in the scene).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementTable {
+    /// Node pairs.
+    pub elements: Vec<[usize; 2]>,
+    /// Group index per element.
+    pub groups: Vec<usize>,
+    /// Group names.
+    pub group_names: Vec<String>,
 }
 
-enum Reply {
-    Forces(Result<Forces>),
-    Positions(Vec<[f64; 3]>),
+/// The caller's clock: call k of a run of equal steps ends at `base + k·dt` exactly, the same
+/// product the solver lands on (a running sum would drift from it in its last bits;
+/// docs/theory/fem.md#coupling).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Clock {
+    base: f64,
+    k: u64,
+    dt: f64,
+}
+
+impl Clock {
+    /// The end of a call of step `dt` from `now`, and the clock after it.
+    fn advance(self, now: f64, dt: f64) -> (f64, Clock) {
+        if self.dt > 0.0 && (dt - self.dt).abs() <= 1e-12 * self.dt {
+            let k = self.k + 1;
+            (self.base + k as f64 * self.dt, Clock { k, ..self })
+        } else {
+            let c = Clock {
+                base: now,
+                k: 1,
+                dt,
+            };
+            (now + dt, c)
+        }
+    }
+}
+
+/// The coupling's whole state, from [`Coupling::save`].
+#[derive(Debug, Clone)]
+pub struct CouplingState {
+    solver: Option<Box<Snapshot>>,
+    keyframes: Vec<Vec<Keyframes>>,
+    last: Vec<Vec<([f64; 3], [f64; 3])>>,
+    poses: Vec<[f64; 6]>,
+    time: f64,
+    clock: Clock,
+}
+
+impl CouplingState {
+    /// The model time of the saved state [s].
+    pub fn time(&self) -> f64 {
+        self.time
+    }
 }
 
 /// A scene driven from outside; see the module docs.
 #[derive(Debug)]
 pub struct Coupling {
     points: Vec<CoupledPoint>,
+    bodies: Vec<CoupledBody>,
+    /// Each body's pose at the end of the last call.
+    poses: Vec<[f64; 6]>,
     motions: Vec<Vec<ExternalMotion>>,
     last: Vec<Vec<([f64; 3], [f64; 3])>>,
+    table: ElementTable,
     tx: Option<Sender<Request>>,
     rx: Receiver<Reply>,
     worker: Option<JoinHandle<()>>,
-    /// Coupling steps taken.
-    steps: u64,
-    /// The coupling step, fixed by the first call [s].
-    dt: Option<f64>,
+    /// The model time: the end of the last call that succeeded [s].
+    time: f64,
+    clock: Clock,
     initialised: bool,
 }
 
@@ -118,6 +174,12 @@ impl Coupling {
             .iter()
             .map(|p| p.rest.iter().map(|x| (*x, [0.0; 3])).collect())
             .collect();
+        let elements = prep.built.model.elements();
+        let table = ElementTable {
+            elements: elements.iter().map(|e| [e.a, e.b]).collect(),
+            groups: elements.iter().map(|e| e.group).collect(),
+            group_names: prep.built.group_names.clone(),
+        };
         let (tx, rx_req) = channel();
         let (tx_rep, rx) = channel();
         let worker = std::thread::Builder::new()
@@ -126,13 +188,20 @@ impl Coupling {
             .map_err(|e| SimError::Coupling(format!("cannot start the solver thread: {e}")))?;
         Ok(Self {
             points,
+            bodies: Vec::new(),
+            poses: Vec::new(),
             motions,
             last,
+            table,
             tx: Some(tx),
             rx,
             worker: Some(worker),
-            steps: 0,
-            dt: None,
+            time: 0.0,
+            clock: Clock {
+                base: 0.0,
+                k: 0,
+                dt: 0.0,
+            },
             initialised: false,
         })
     }
@@ -156,11 +225,53 @@ impl Coupling {
             })
     }
 
-    /// The model time [s]: the steps taken times the coupling step, the same product the
-    /// solver lands on (a running sum of the steps would drift from it in its last bits;
-    /// docs/theory/fem.md#coupling).
+    /// Puts the points named in `points` on a rigid body called `name` whose reference point
+    /// is built at `origin` [m] (see `body.rs` for the pose and its conventions). A point
+    /// belongs to one body at most. Returns the body's index.
+    pub fn add_body(&mut self, name: &str, points: &[&str], origin: [f64; 3]) -> Result<usize> {
+        if self.bodies.iter().any(|b| b.name == name) {
+            return Err(SimError::Coupling(format!(
+                "a body called \"{name}\" exists already"
+            )));
+        }
+        if points.is_empty() {
+            return Err(SimError::Coupling(format!(
+                "body \"{name}\": give the coupled points it carries"
+            )));
+        }
+        let mut idx = Vec::with_capacity(points.len());
+        for p in points {
+            let i = self.point(p)?;
+            if idx.contains(&i) || self.bodies.iter().any(|b| b.points.contains(&i)) {
+                return Err(SimError::Coupling(format!(
+                    "body \"{name}\": point \"{p}\" is already on a body"
+                )));
+            }
+            idx.push(i);
+        }
+        let body = CoupledBody::new(name, idx, &self.points, origin)?;
+        self.bodies.push(body);
+        self.poses
+            .push([origin[0], origin[1], origin[2], 0.0, 0.0, 0.0]);
+        Ok(self.bodies.len() - 1)
+    }
+
+    /// The coupled bodies.
+    pub fn bodies(&self) -> &[CoupledBody] {
+        &self.bodies
+    }
+
+    /// The index of a body by its name.
+    pub fn body(&self, name: &str) -> Result<usize> {
+        self.bodies
+            .iter()
+            .position(|b| b.name == name)
+            .ok_or_else(|| SimError::Coupling(format!("\"{name}\" is no coupled body")))
+    }
+
+    /// The model time [s]: the end of the last call that succeeded.
     pub fn time(&self) -> f64 {
-        self.dt.map_or(0.0, |dt| self.steps as f64 * dt)
+        self.time
     }
 
     fn ask(&self, req: Request) -> Result<Reply> {
@@ -176,7 +287,7 @@ impl Coupling {
     fn forces(&self, req: Request) -> Result<Forces> {
         match self.ask(req)? {
             Reply::Forces(f) => f,
-            Reply::Positions(_) => Err(SimError::Coupling("unexpected reply".into())),
+            _ => Err(SimError::Coupling("unexpected reply".into())),
         }
     }
 
@@ -192,50 +303,115 @@ impl Coupling {
     }
 
     /// Advances from `t` to `t + dt` [s] with the points given in `targets` (index into
-    /// [`Coupling::points`], where the point is at `t + dt`); points not given stay where they
-    /// are. Returns the forces on all points at `t + dt`.
-    pub fn step(&mut self, t: f64, dt: f64, targets: &[(usize, Target)]) -> Result<Forces> {
+    /// [`Coupling::points`], where the point is at `t + dt`) and the bodies in `bodies`
+    /// (index into [`Coupling::bodies`]); points and bodies not given stay where they are.
+    /// Returns the forces on all points at `t + dt`. When the step fails the coupling stays
+    /// at `t` (implicit schemes) and the call may be repeated with a smaller `dt`.
+    pub fn step(
+        &mut self,
+        t: f64,
+        dt: f64,
+        targets: &[(usize, Target)],
+        bodies: &[(usize, BodyTarget)],
+    ) -> Result<Forces> {
         if !self.initialised {
             return Err(SimError::Coupling("call init before step".into()));
         }
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(SimError::Coupling(format!("dt = {dt}: a step > 0 s")));
         }
-        let now = self.time();
-        if (t - now).abs() > 1e-9 * dt.max(1e-300) + 1e-12 * t.abs() {
+        let now = self.time;
+        if (t - now).abs() > 1e-9 * dt + 1e-12 * t.abs() {
             return Err(SimError::Coupling(format!(
                 "step from t = {t} s, but the model is at t = {now} s"
             )));
         }
-        let dt = match self.dt {
-            None => dt,
-            Some(fixed) if (dt - fixed).abs() <= 1e-12 * fixed => fixed,
-            Some(fixed) => {
+        // The end of the call is the clock's product, the time the solver lands on exactly:
+        // the motion's end keyframe and the solver's clock are the same number.
+        let (t1, clock) = self.clock.advance(now, dt);
+        let mut all: Vec<(usize, Target)> = targets.to_vec();
+        for (b, target) in bodies {
+            let body = self
+                .bodies
+                .get(*b)
+                .ok_or_else(|| SimError::Coupling(format!("no coupled body #{b}")))?;
+            all.extend(body.targets(target)?);
+        }
+        let mut given = vec![false; self.points.len()];
+        for (i, _) in &all {
+            let g = given
+                .get_mut(*i)
+                .ok_or_else(|| SimError::Coupling(format!("no coupled point #{i}")))?;
+            if *g {
                 return Err(SimError::Coupling(format!(
-                    "dt = {dt} s: a coupling keeps the step of its first call ({fixed} s)"
+                    "\"{}\" is given twice (as a point and on a body, or twice)",
+                    self.points[*i].name
                 )));
             }
-        };
-        // The end of the step is the (k + 1)-th multiple of Δt, the time the solver lands on
-        // exactly: the motion's end keyframe and the solver's clock are the same number.
-        let t1 = (self.steps + 1) as f64 * dt;
-        let mut given = vec![false; self.points.len()];
-        for (i, target) in targets {
-            self.set_target(*i, target, t1, dt)?;
-            given[*i] = true;
+            *g = true;
         }
-        for i in (0..self.points.len()).filter(|&i| !given[i]) {
-            let hold = Target {
-                position: self.last[i].iter().map(|(x, _)| *x).collect(),
-                velocity: Some(vec![[0.0; 3]; self.points[i].nodes.len()]),
-                acceleration: None,
-            };
-            self.set_target(i, &hold, t1, dt)?;
+        let saved = self.keyframes();
+        let last = self.last.clone();
+        let set = (|| {
+            for (i, target) in &all {
+                self.set_target(*i, target, t1, dt)?;
+            }
+            for i in (0..self.points.len()).filter(|&i| !given[i]) {
+                let hold = Target {
+                    position: self.last[i].iter().map(|(x, _)| *x).collect(),
+                    velocity: Some(vec![[0.0; 3]; self.points[i].nodes.len()]),
+                    acceleration: None,
+                };
+                self.set_target(i, &hold, t1, dt)?;
+            }
+            self.forces(Request::Step { t1, dt })
+        })();
+        match set {
+            Ok(f) => {
+                self.time = t1;
+                self.clock = clock;
+                for (b, target) in bodies {
+                    self.poses[*b] = target.pose;
+                }
+                Ok(f)
+            }
+            Err(e) => {
+                // Back to where the call started, so that it can be retried.
+                self.set_keyframes(&saved);
+                self.last = last;
+                Err(e)
+            }
         }
-        let f = self.forces(Request::Step { t1, dt })?;
-        self.dt = Some(dt);
-        self.steps += 1;
-        Ok(f)
+    }
+
+    /// [F_x, F_y, F_z, M_x, M_y, M_z] [N, N·m] of `forces` (as returned by the last call) on
+    /// body `b`, the moment about its reference point where the last call put it.
+    pub fn body_wrench(&self, b: usize, forces: &Forces) -> Result<[f64; 6]> {
+        let body = self
+            .bodies
+            .get(b)
+            .ok_or_else(|| SimError::Coupling(format!("no coupled body #{b}")))?;
+        let positions: Vec<Vec<[f64; 3]>> = self
+            .last
+            .iter()
+            .map(|p| p.iter().map(|(x, _)| *x).collect())
+            .collect();
+        Ok(body.wrench(forces, &positions, self.poses[b]))
+    }
+
+    fn keyframes(&self) -> Vec<Vec<Keyframes>> {
+        self.motions
+            .iter()
+            .map(|m| m.iter().map(|m| m.keyframes()).collect())
+            .collect()
+    }
+
+    fn set_keyframes(&self, frames: &[Vec<Keyframes>]) {
+        for (m, f) in self.motions.iter().zip(frames) {
+            for (m, f) in m.iter().zip(f) {
+                m.set_keyframes(*f);
+            }
+        }
     }
 
     fn set_target(&mut self, i: usize, target: &Target, t1: f64, dt: f64) -> Result<()> {
@@ -290,12 +466,67 @@ impl Coupling {
         Ok(())
     }
 
-    /// Positions of all model nodes [m] (mesh node order).
+    /// Positions of the mesh nodes [m], in mesh node order (the order of
+    /// [`ElementTable::elements`]).
     pub fn positions(&self) -> Result<Vec<[f64; 3]>> {
         match self.ask(Request::Positions)? {
             Reply::Positions(x) => Ok(x),
-            Reply::Forces(_) => Err(SimError::Coupling("unexpected reply".into())),
+            _ => Err(SimError::Coupling("unexpected reply".into())),
         }
+    }
+
+    /// Tension of every cable element [N] at the current state, in the order of
+    /// [`Coupling::elements`].
+    pub fn tensions(&self) -> Result<Vec<f64>> {
+        match self.ask(Request::Tensions)? {
+            Reply::Tensions(x) => Ok(x),
+            _ => Err(SimError::Coupling("unexpected reply".into())),
+        }
+    }
+
+    /// What names the elements of [`Coupling::tensions`].
+    pub fn elements(&self) -> &ElementTable {
+        &self.table
+    }
+
+    /// The whole state: the solver's, the points' motions, the bodies' poses and the clock.
+    /// [`Coupling::restore`] puts it back, and the calls after it repeat those after the save
+    /// bit for bit (implicit schemes).
+    pub fn save(&mut self) -> Result<CouplingState> {
+        if !self.initialised {
+            return Err(SimError::Coupling("call init before save".into()));
+        }
+        let solver = match self.ask(Request::Save)? {
+            Reply::Saved(s) => s?,
+            _ => return Err(SimError::Coupling("unexpected reply".into())),
+        };
+        Ok(CouplingState {
+            solver,
+            keyframes: self.keyframes(),
+            last: self.last.clone(),
+            poses: self.poses.clone(),
+            time: self.time,
+            clock: self.clock,
+        })
+    }
+
+    /// Puts back a state of [`Coupling::save`] of this coupling.
+    pub fn restore(&mut self, state: &CouplingState) -> Result<()> {
+        if state.keyframes.len() != self.motions.len() || state.poses.len() > self.poses.len() {
+            return Err(SimError::Coupling(
+                "restore: the state is of another coupling".into(),
+            ));
+        }
+        match self.ask(Request::Restore(state.solver.clone()))? {
+            Reply::Restored(r) => r?,
+            _ => return Err(SimError::Coupling("unexpected reply".into())),
+        }
+        self.set_keyframes(&state.keyframes);
+        self.last.clone_from(&state.last);
+        self.poses[..state.poses.len()].copy_from_slice(&state.poses);
+        self.time = state.time;
+        self.clock = state.clock;
+        Ok(())
     }
 
     /// Stops the solver thread (also done on drop).
@@ -310,129 +541,5 @@ impl Coupling {
 impl Drop for Coupling {
     fn drop(&mut self) {
         self.close();
-    }
-}
-
-/// The forces on the points: −R at their nodes.
-fn point_forces(prep: &Prepared, outputs: &Outputs) -> Forces {
-    prep.built
-        .external
-        .iter()
-        .map(|(_, list)| {
-            list.iter()
-                .map(|(n, _)| outputs.reaction[*n].map(|r| -r))
-                .collect()
-        })
-        .collect()
-}
-
-/// The integrator of a coupling: the scene's, landing on every caller step, without an end.
-fn coupled_integrator(prep: &Prepared, dt: f64) -> Integrator {
-    match &prep.plan.dynamics {
-        Some(Integrator::Hht(s)) => Integrator::Hht(DynamicSettings {
-            dt,
-            t_end: OPEN_END,
-            output_interval: Some(dt),
-            ..s.clone()
-        }),
-        Some(Integrator::Explicit(s)) => {
-            let mut s = s.clone();
-            s.t_end = OPEN_END;
-            s.output_interval = Some(dt);
-            Integrator::Explicit(s)
-        }
-        None => {
-            let mut s = DynamicSettings::new(dt, OPEN_END);
-            s.output_interval = Some(dt);
-            Integrator::Hht(s)
-        }
-    }
-}
-
-/// The solver thread: owns the model, answers requests until the channel closes.
-fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
-    let model = &prep.built.model;
-    let mut loads = match water_loads(&prep, Phase::Static) {
-        Ok((l, _)) => l,
-        Err(e) => {
-            // Every request gets the error.
-            let msg = e.chain();
-            while rx.recv().is_ok() {
-                let _ = tx.send(Reply::Forces(Err(SimError::Coupling(msg.clone()))));
-            }
-            return;
-        }
-    };
-    let mut initial: Option<(State, Outputs)> = None;
-    let mut solver: Option<Box<dyn Stepper + '_>> = None;
-    while let Ok(req) = rx.recv() {
-        let reply = match req {
-            Request::Init => {
-                if prep.plan.kind == AnalysisKind::Dynamic {
-                    // Dynamics from the as-built state at rest: no forces known before a step.
-                    let zero = prep
-                        .built
-                        .external
-                        .iter()
-                        .map(|(_, list)| vec![[0.0; 3]; list.len()])
-                        .collect();
-                    Reply::Forces(Ok(zero))
-                } else {
-                    let mut go_on =
-                        |_: &aqua_fem::StaticProgress| aqua_fem::StaticControl::Continue;
-                    match static_equilibrium(
-                        model,
-                        &prep.built.mesh,
-                        &mut loads,
-                        &prep.plan.statics,
-                        &mut go_on,
-                    ) {
-                        Ok(s) => {
-                            let f = point_forces(&prep, &s.outputs);
-                            initial = Some((s.state, s.outputs));
-                            Reply::Forces(Ok(f))
-                        }
-                        Err(e) => Reply::Forces(Err(e)),
-                    }
-                }
-            }
-            Request::Step { t1, dt } => Reply::Forces((|| {
-                if solver.is_none() {
-                    loads.phase = Phase::Dynamic;
-                    let integ = coupled_integrator(&prep, dt);
-                    let init = initial.as_ref().map(|s| &s.0);
-                    solver = Some(start_integrator(model, &integ, init, &mut loads)?);
-                }
-                let s = solver
-                    .as_mut()
-                    .ok_or_else(|| SimError::Coupling("no solver".into()))?;
-                // Sub-steps (halvings, an explicit scheme's smaller step) until the solver
-                // lands on the next output time, which is t1: one coupling step, never two.
-                while !s
-                    .step(&mut loads)
-                    .map_err(|e| SimError::Dynamic(Box::new(e)))?
-                    .output_time
-                {}
-                let t = s.state().t;
-                if (t - t1).abs() > 1e-9 * dt {
-                    return Err(SimError::Coupling(format!(
-                        "the solver reached t = {t} s instead of the step's end t = {t1} s"
-                    )));
-                }
-                Ok(point_forces(&prep, s.outputs()))
-            })()),
-            // The mesh's nodes (a rod's twist carriers follow them in the model).
-            Request::Positions => Reply::Positions({
-                let np = prep.built.mesh.nodes.len();
-                match (&solver, &initial) {
-                    (Some(s), _) => s.state().x[..np].to_vec(),
-                    (None, Some((st, _))) => st.x[..np].to_vec(),
-                    (None, None) => model.nodes()[..np].to_vec(),
-                }
-            }),
-        };
-        if tx.send(reply).is_err() {
-            break;
-        }
     }
 }
