@@ -1,5 +1,7 @@
 //! Typed errors of the structural model and its solvers.
 
+use crate::failure::{FailureReason, SchemeKind};
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Everything that can go wrong while building a model or solving it.
@@ -113,13 +115,13 @@ pub enum FemError {
         /// Every node of the part (for naming it).
         nodes: Vec<usize>,
     },
-    /// The load provider reported an error.
-    #[error("load provider, element {element}: {message}")]
+    /// The load provider reported an error, or its loads were unusable.
+    #[error("load provider, element {element}: {error}")]
     Load {
         /// Load element index (usize::MAX when not element specific).
         element: usize,
-        /// Provider's message.
-        message: String,
+        /// The provider's error, its type kept ([`LoadError::inner`]).
+        error: LoadError,
     },
     /// The static solver failed.
     #[error(transparent)]
@@ -135,10 +137,40 @@ pub enum FemError {
     NonFinite(String),
 }
 
-/// Error returned by a [`crate::LoadProvider`].
-#[derive(Debug, Error, Clone, PartialEq)]
+/// Error returned by a [`crate::LoadProvider`]: the provider's own error, boxed with its type,
+/// so a caller can downcast it ([`LoadError::inner`]) and act on the cause.
+#[derive(Debug, Error, Clone)]
+#[error(transparent)]
+pub struct LoadError(Arc<dyn std::error::Error + Send + Sync + 'static>);
+
+impl LoadError {
+    /// Wraps a provider's error.
+    pub fn new(error: impl std::error::Error + Send + Sync + 'static) -> Self {
+        Self(Arc::new(error))
+    }
+
+    /// An error that is only a message.
+    pub fn msg(message: impl Into<String>) -> Self {
+        Self(Arc::new(Message(message.into())))
+    }
+
+    /// The provider's error, for `downcast_ref`.
+    pub fn inner(&self) -> &(dyn std::error::Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+impl PartialEq for LoadError {
+    /// Equal when the messages are: the boxed errors need not be comparable.
+    fn eq(&self, other: &Self) -> bool {
+        self.to_string() == other.to_string()
+    }
+}
+
+/// A [`LoadError`] that is only a message.
+#[derive(Debug, Error)]
 #[error("{0}")]
-pub struct LoadError(pub String);
+struct Message(String);
 
 /// Result alias of this crate.
 pub type Result<T, E = FemError> = std::result::Result<T, E>;
@@ -177,8 +209,9 @@ fn brief(history: &[f64]) -> String {
     "static solve failed at load factor {load_factor:.4} (increment {increment:.2e} < minimum \
          {min_increment:.2e}): {reason}; worst node {worst_node} at {worst_position:?} with \
          residual {worst_residual:.4e} N (F_ref = {f_ref:.4e} N); residual history {}. \
-         Hints: check supports and slack parts, use more `load_steps` or `max_iter`",
-    brief(.history)
+         Hints: {}",
+    brief(.history),
+    .reason.hint(SchemeKind::Statics)
 )]
 pub struct StaticFailure {
     /// Load factor that could not be reached.
@@ -188,7 +221,7 @@ pub struct StaticFailure {
     /// Minimum allowed increment.
     pub min_increment: f64,
     /// Why the last attempt failed.
-    pub reason: String,
+    pub reason: FailureReason,
     /// Node with the largest residual.
     pub worst_node: usize,
     /// Its position [m].
@@ -208,9 +241,9 @@ pub struct StaticFailure {
          {reason}; worst node {worst_node} at {worst_position:?} with residual \
          {worst_residual:.4e} N; most strained element {max_strain_element} (strain \
          {max_strain:.4e}), most compressed element {min_strain_element} (strain \
-         {min_strain:.4e}); residual history {}. Hints: smaller dt, {scheme_hint}, \
-         check supports and slack parts",
-    brief(.history)
+         {min_strain:.4e}); residual history {}. Hints: {}",
+    brief(.history),
+    .reason.hint(*.scheme)
 )]
 pub struct StepFailure {
     /// Time of the last converged state [s].
@@ -220,7 +253,7 @@ pub struct StepFailure {
     /// Minimum step [s].
     pub dt_min: f64,
     /// Why the last attempt failed.
-    pub reason: String,
+    pub reason: FailureReason,
     /// Node with the largest residual.
     pub worst_node: usize,
     /// Its position [m].
@@ -237,7 +270,7 @@ pub struct StepFailure {
     pub min_strain: f64,
     /// ‖r‖/F_ref per iteration of the last attempt.
     pub history: Vec<f64>,
-    /// What the scheme that failed can change: more numerical damping (HHT-α's `alpha`,
-    /// the midpoint rule's `theta`) or the other scheme.
-    pub scheme_hint: String,
+    /// The scheme that failed: the hint names only what it can change (HHT-α's `alpha`, the
+    /// midpoint rule's `theta`).
+    pub scheme: SchemeKind,
 }

@@ -201,6 +201,18 @@ impl<'m> ExplicitSolver<'m> {
     pub fn is_finished(&self) -> bool {
         self.state.t >= self.st.t_end - 1e-9 * self.dt.max(1e-12)
     }
+    /// Moves the end time to `t_end` [s], not before the current time (a coupling's call).
+    pub fn extend_to(&mut self, t_end: f64) -> Result<()> {
+        if !(t_end.is_finite() && t_end >= self.state.t) {
+            return Err(invalid(
+                "t_end [s]",
+                t_end,
+                format!("finite and not before the current time {} s", self.state.t),
+            ));
+        }
+        self.st.t_end = t_end;
+        Ok(())
+    }
     /// Accepted steps.
     pub fn n_steps(&self) -> usize {
         self.n_steps

@@ -120,6 +120,7 @@ mod dual;
 pub mod dynamics;
 pub mod error;
 pub mod explicit;
+mod failure;
 pub mod friction;
 mod line_relaxation;
 pub mod loads;
@@ -135,12 +136,13 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_CREATED,
-    ENERGY_GROWTH_TOL, Energies, LinearSolverKind, LinearSolverStats, MassMatrix, StepControl,
-    StepEvent, StepReport, TensionResolution,
+    DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies,
+    LinearSolverKind, LinearSolverStats, MassMatrix, Snapshot, StepControl, StepEvent,
+    StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};
+pub use failure::{FailureKind, FailureReason, SchemeKind};
 pub use friction::{DEFAULT_SLIP_VELOCITY, SeabedFriction};
 pub use loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, NoLoads, Want};
 pub use model::{
@@ -148,7 +150,7 @@ pub use model::{
     DEFAULT_WATER_DENSITY, Dofs, Environment, Group, GroupId, Model, ModelBuilder, PointBody,
     RodSection, Seabed, Support, UnstretchedLength,
 };
-pub use motion::{ExternalMotion, Motion, TableSpline, smooth_ramp};
+pub use motion::{ExternalMotion, Keyframes, Motion, TableSpline, smooth_ramp};
 pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };

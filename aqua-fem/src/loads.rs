@@ -168,6 +168,6 @@ pub(crate) fn accept_state<P: LoadProvider + ?Sized>(
         .accept_state(t, x)
         .map_err(|e| crate::FemError::Load {
             element: usize::MAX,
-            message: e.0,
+            error: e,
         })
 }

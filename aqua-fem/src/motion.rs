@@ -356,9 +356,10 @@ struct Keyframe {
     a: Option<[f64; 3]>,
 }
 
-/// The last two keyframes of an external motion.
+/// The last two keyframes of an external motion: what [`ExternalMotion::keyframes`] saves and
+/// [`ExternalMotion::set_keyframes`] puts back (a coupling's retry and restore).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Keyframes {
+pub struct Keyframes {
     start: Keyframe,
     end: Keyframe,
 }
@@ -403,6 +404,16 @@ impl ExternalMotion {
             a: Some(a0),
         };
         k.end = Keyframe { t, d, v, a };
+    }
+
+    /// The current keyframes.
+    pub fn keyframes(&self) -> Keyframes {
+        self.frames()
+    }
+
+    /// Puts back keyframes saved by [`ExternalMotion::keyframes`].
+    pub fn set_keyframes(&self, frames: Keyframes) {
+        *self.0.lock().unwrap_or_else(|p| p.into_inner()) = frames;
     }
 
     /// Offset, velocity and acceleration at time t.

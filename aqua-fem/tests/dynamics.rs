@@ -668,7 +668,7 @@ fn chain_lands_on_a_damped_seabed_without_newton_failures() {
         let newton: usize = c
             .reasons
             .iter()
-            .filter(|(r, _)| !r.contains("created energy"))
+            .filter(|(r, _)| *r != aqua_fem::FailureKind::EnergyCreated)
             .map(|(_, n)| n)
             .sum();
         assert_eq!(newton, 0, "midpoint {midpoint}: halvings {:?}", c.reasons);

@@ -13,11 +13,13 @@
 //! sim.close()
 //! ```
 //!
+//! The coupling (bodies, tensions mid-run, save/restore, retry) is in `coupling.rs`;
+//! docs/guide/coupling.md is its guide.
+//!
 //! Errors carry the message `aqua` prints after "error: ". Their class tells the cause:
 //! `aqua.InputError` for a mistake in the scene, `aqua.SolveError` for a solve that failed,
 //! both subclasses of `aqua.AquaError`, which the other failures (files, coupling calls) raise.
 
-use aqua_sim::coupling::{Forces, Target};
 use aqua_sim::{Frame, Observer, SimError};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::create_exception;
@@ -25,7 +27,6 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 
 create_exception!(
     aqua,
@@ -49,8 +50,10 @@ create_exception!(
      start, a dynamic step that failed, or values that are not finite."
 );
 
+mod coupling;
+
 /// The Python exception for an aqua-sim error, chosen by its variant (not by its message).
-fn err(e: SimError) -> PyErr {
+pub(crate) fn err(e: SimError) -> PyErr {
     let msg = e.chain();
     match e {
         SimError::Input(_) | SimError::Model { .. } => InputError::new_err(msg),
@@ -67,8 +70,8 @@ fn err(e: SimError) -> PyErr {
 
 /// A scene: the TOML file's contents, type-checked.
 #[pyclass(module = "aqua", frozen)]
-struct Scene {
-    inner: aqua_sim::Scene,
+pub(crate) struct Scene {
+    pub(crate) inner: aqua_sim::Scene,
 }
 
 #[pymethods]
@@ -307,181 +310,13 @@ impl Results {
     }
 }
 
-/// Drives the `[[prescribed]]` node groups of a scene from Python, MoorDyn style:
-/// `init()` (static equilibrium), `step(t, dt, {name: position})`, `close()`.
-///
-/// Positions are absolute [m], one row per node of the group ((3,) for one node); a value may
-/// also be a dict with `position`, `velocity` and `acceleration` (a missing velocity is the
-/// backward difference of the positions, and then a missing acceleration that of the
-/// velocities). The first step fixes dt; step k ends at `time` = k·dt. The returned forces are
-/// the structure's forces on each group's nodes [N], {name: array (n_nodes, 3)}.
-#[pyclass(module = "aqua", frozen)]
-struct Coupling {
-    inner: Mutex<Option<aqua_sim::Coupling>>,
-    names: Vec<String>,
-}
-
-fn rows(obj: &Bound<'_, PyAny>) -> PyResult<Vec<[f64; 3]>> {
-    let three = |v: Vec<f64>| -> PyResult<[f64; 3]> {
-        <[f64; 3]>::try_from(v.as_slice()).map_err(|_| {
-            pyo3::exceptions::PyValueError::new_err(format!(
-                "a position has 3 coordinates, got {}",
-                v.len()
-            ))
-        })
-    };
-    if let Ok(v) = obj.extract::<Vec<f64>>() {
-        return Ok(vec![three(v)?]);
-    }
-    obj.extract::<Vec<Vec<f64>>>()?
-        .into_iter()
-        .map(three)
-        .collect()
-}
-
-fn target(obj: &Bound<'_, PyAny>) -> PyResult<Target> {
-    if let Ok(d) = obj.cast::<PyDict>() {
-        let get = |k: &str| -> PyResult<Option<Vec<[f64; 3]>>> {
-            d.get_item(k)?.map(|v| rows(&v)).transpose()
-        };
-        return Ok(Target {
-            position: get("position")?.ok_or_else(|| {
-                pyo3::exceptions::PyValueError::new_err("a target dict needs \"position\"")
-            })?,
-            velocity: get("velocity")?,
-            acceleration: get("acceleration")?,
-        });
-    }
-    Ok(Target {
-        position: rows(obj)?,
-        ..Target::default()
-    })
-}
-
-impl Coupling {
-    fn with<T>(
-        &self,
-        f: impl FnOnce(&mut aqua_sim::Coupling) -> aqua_sim::Result<T>,
-    ) -> PyResult<T> {
-        let mut guard = self.inner.lock().map_err(|_| {
-            AquaError::new_err("coupling: a previous call panicked; create a new Coupling")
-        })?;
-        let c = guard
-            .as_mut()
-            .ok_or_else(|| AquaError::new_err("coupling: the coupling is closed"))?;
-        f(c).map_err(err)
-    }
-
-    fn forces<'py>(&self, py: Python<'py>, f: Forces) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for (name, rows) in self.names.iter().zip(f) {
-            let n = rows.len();
-            let a = PyArray1::from_vec(py, rows.into_iter().flatten().collect());
-            d.set_item(name, a.reshape([n, 3])?)?;
-        }
-        Ok(d)
-    }
-}
-
-#[pymethods]
-impl Coupling {
-    /// Builds the scene (a `Scene` or a path) with its `[[prescribed]]` nodes driven from
-    /// Python.
-    #[new]
-    fn new(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let scene = match scene.cast::<Scene>() {
-            Ok(s) => s.get().inner.clone(),
-            Err(_) => aqua_sim::read_scene(&scene.extract::<PathBuf>()?).map_err(err)?,
-        };
-        let c = py.detach(|| aqua_sim::Coupling::new(scene)).map_err(err)?;
-        let names = c.points().iter().map(|p| p.name.clone()).collect();
-        Ok(Self {
-            inner: Mutex::new(Some(c)),
-            names,
-        })
-    }
-
-    /// Names of the coupled node groups.
-    #[getter]
-    fn points(&self) -> Vec<String> {
-        self.names.clone()
-    }
-
-    /// Model time [s].
-    #[getter]
-    fn time(&self) -> PyResult<f64> {
-        self.with(|c| Ok(c.time()))
-    }
-
-    /// Static equilibrium (as-built state for a dynamic-only scene); returns the forces.
-    fn init<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let f = py.detach(|| self.with(|c| c.init()))?;
-        self.forces(py, f)
-    }
-
-    /// Advances from t to t + dt with the given groups at their positions at t + dt; the
-    /// others stay. Returns the forces at t + dt.
-    #[pyo3(signature = (t, dt, targets = None))]
-    fn step<'py>(
-        &self,
-        py: Python<'py>,
-        t: f64,
-        dt: f64,
-        targets: Option<&Bound<'py, PyDict>>,
-    ) -> PyResult<Bound<'py, PyDict>> {
-        let mut list = Vec::new();
-        if let Some(targets) = targets {
-            for (k, v) in targets.iter() {
-                let name: String = k.extract()?;
-                let i = self.with(|c| c.point(&name))?;
-                list.push((i, target(&v)?));
-            }
-        }
-        let f = py.detach(|| self.with(|c| c.step(t, dt, &list)))?;
-        self.forces(py, f)
-    }
-
-    /// Positions of the mesh nodes [m], (n_nodes, 3).
-    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let x = self.with(|c| c.positions())?;
-        let n = x.len();
-        let a = PyArray1::from_vec(py, x.into_iter().flatten().collect());
-        Ok(a.reshape([n, 3])?.into_any())
-    }
-
-    /// Stops the solver; later calls raise.
-    fn close(&self) -> PyResult<()> {
-        let mut guard = self
-            .inner
-            .lock()
-            .map_err(|_| AquaError::new_err("coupling: a previous call panicked"))?;
-        if let Some(mut c) = guard.take() {
-            c.close();
-        }
-        Ok(())
-    }
-
-    fn __enter__(slf: Py<Self>) -> Py<Self> {
-        slf
-    }
-
-    fn __exit__(
-        &self,
-        _t: &Bound<'_, PyAny>,
-        _v: &Bound<'_, PyAny>,
-        _tb: &Bound<'_, PyAny>,
-    ) -> PyResult<bool> {
-        self.close()?;
-        Ok(false)
-    }
-}
-
 /// The `aqua` module.
 #[pymodule(name = "aqua")]
 fn aqua_py(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Results>()?;
-    m.add_class::<Coupling>()?;
+    m.add_class::<coupling::Coupling>()?;
+    m.add_class::<coupling::CouplingState>()?;
     m.add("AquaError", m.py().get_type::<AquaError>())?;
     m.add("InputError", m.py().get_type::<InputError>())?;
     m.add("SolveError", m.py().get_type::<SolveError>())?;

@@ -33,7 +33,7 @@ fn main() -> Result<(), SimError> {
             velocity: Some(vec![[v, 0.0, 0.0]]),
             acceleration: None,
         };
-        f = c.step(c.time(), dt, &[(0, target)])?;
+        f = c.step(c.time(), dt, &[(0, target)], &[])?;
     }
     let per_step = t0.elapsed().as_secs_f64() / n as f64;
     println!(

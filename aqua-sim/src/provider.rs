@@ -87,13 +87,11 @@ impl LoadProvider for WaterLoads {
     fn prepare(&mut self, t: f64, x: &[[f64; 3]], _v: &[[f64; 3]]) -> Result<(), LoadError> {
         self.assembly
             .prepare(t, self.phase, x)
-            .map_err(|e| LoadError(e.to_string()))
+            .map_err(LoadError::new)
     }
 
     fn accept_state(&mut self, t: f64, x: &[[f64; 3]]) -> Result<bool, LoadError> {
-        self.assembly
-            .update_wake(t, x)
-            .map_err(|e| LoadError(e.to_string()))
+        self.assembly.update_wake(t, x).map_err(LoadError::new)
     }
 
     fn element_load(

@@ -427,7 +427,7 @@ fn energy_guard_warning(integrator: &Integrator, record: &RunRecord) -> Option<D
     let rejected: usize = control
         .reasons
         .iter()
-        .filter(|(why, _)| why == aqua_fem::ENERGY_CREATED)
+        .filter(|(why, _)| *why == aqua_fem::FailureKind::EnergyCreated)
         .map(|(_, n)| n)
         .sum();
     if rejected < 20 || (rejected as f64) < 0.02 * record.steps as f64 {

@@ -6,8 +6,8 @@ use crate::error::{Result, SimError};
 use crate::plan::Integrator;
 use crate::provider::WaterLoads;
 use aqua_fem::{
-    DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs, State,
-    StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl, StepReport,
+    DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs, Snapshot,
+    State, StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl, StepReport,
     solve_static_observed,
 };
 use aqua_mesh::{Mesh, ObjectKind};
@@ -98,6 +98,24 @@ pub trait Stepper {
     fn linear_solver_stats(&self) -> Option<LinearSolverStats> {
         None
     }
+    /// Moves the end time to `t_end` [s] (a coupling's call; a failed step may be retried).
+    fn extend_to(&mut self, t_end: f64) -> aqua_fem::Result<()>;
+    /// The integrator's state for [`Stepper::restore`] (implicit schemes only); the next
+    /// step factorises afresh, as after a restore.
+    fn save(&mut self) -> Option<Snapshot> {
+        None
+    }
+    /// The integrator's state, leaving its kept factorisation in use.
+    fn checkpoint(&self) -> Option<Snapshot> {
+        None
+    }
+    /// Puts back a state of [`Stepper::save`].
+    fn restore(&mut self, snapshot: &Snapshot) -> aqua_fem::Result<()> {
+        let _ = snapshot;
+        Err(FemError::InvalidModel(
+            "save and restore need an implicit scheme (HHT-α or the midpoint rule)".into(),
+        ))
+    }
 }
 
 impl Stepper for DynamicSolver<'_> {
@@ -125,6 +143,18 @@ impl Stepper for DynamicSolver<'_> {
     fn linear_solver_stats(&self) -> Option<LinearSolverStats> {
         Some(DynamicSolver::linear_solver_stats(self))
     }
+    fn extend_to(&mut self, t_end: f64) -> aqua_fem::Result<()> {
+        DynamicSolver::extend_to(self, t_end)
+    }
+    fn save(&mut self) -> Option<Snapshot> {
+        Some(DynamicSolver::save(self))
+    }
+    fn checkpoint(&self) -> Option<Snapshot> {
+        Some(DynamicSolver::checkpoint(self))
+    }
+    fn restore(&mut self, snapshot: &Snapshot) -> aqua_fem::Result<()> {
+        DynamicSolver::restore(self, snapshot)
+    }
 }
 
 impl Stepper for ExplicitSolver<'_> {
@@ -142,6 +172,9 @@ impl Stepper for ExplicitSolver<'_> {
     }
     fn warnings(&self) -> Vec<String> {
         ExplicitSolver::warnings(self).to_vec()
+    }
+    fn extend_to(&mut self, t_end: f64) -> aqua_fem::Result<()> {
+        ExplicitSolver::extend_to(self, t_end)
     }
 }
 

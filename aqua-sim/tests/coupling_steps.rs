@@ -112,7 +112,7 @@ fn coupled_forces(dt: f64, n: usize) -> Vec<f64> {
             velocity: Some(vec![[v, 0.0, 0.0]]),
             acceleration: Some(vec![[a, 0.0, 0.0]]),
         };
-        let f = c.step(k as f64 * dt, dt, &[(0, target)]).unwrap();
+        let f = c.step(k as f64 * dt, dt, &[(0, target)], &[]).unwrap();
         let f = f[0][0];
         out.push((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt());
     }
@@ -195,7 +195,7 @@ fn coupled_forces_from_positions(dt: f64, n: usize) -> Vec<f64> {
             position: vec![[FAIRLEAD[0] + d, FAIRLEAD[1], FAIRLEAD[2]]],
             ..Target::default()
         };
-        let f = c.step(c.time(), dt, &[(0, target)]).unwrap()[0][0];
+        let f = c.step(c.time(), dt, &[(0, target)], &[]).unwrap()[0][0];
         out.push((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt());
     }
     out

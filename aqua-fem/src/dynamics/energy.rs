@@ -4,6 +4,7 @@
 
 use super::DynamicSolver;
 use super::settings::MassMatrix;
+use crate::failure::FailureReason;
 use crate::state::Outputs;
 use serde::{Deserialize, Serialize};
 
@@ -24,10 +25,6 @@ pub struct Energies {
     /// Numerical dissipation E_num (≈ 0 for α = 0).
     pub numerical_dissipation: f64,
 }
-
-/// The step-control reason (a key of [`StepControl::reasons`](super::StepControl::reasons)) of
-/// a step rejected because it created energy (docs/theory/fem.md#step-control).
-pub const ENERGY_CREATED: &str = "the step created energy";
 
 /// Relative energy a step may create before it is rejected (docs/theory/fem.md#step-control):
 /// HHT-α (α ≥ 0) only dissipates in linear problems; growth beyond round-off and the
@@ -167,7 +164,7 @@ impl DynamicSolver<'_> {
     /// step created energy: ΔE_k,free + ΔU + D − W_ext − W_sup,q > ENERGY_GROWTH_TOL·E_scale, with
     /// E_scale = max(E_n, E_n+1) + Σ_dofs |W| (the trapezoidal work of loads that balance each
     /// other, e.g. weight and tension, is exact only to O(Δt³) per DOF).
-    pub(super) fn guard(&mut self, h: f64) -> Option<String> {
+    pub(super) fn guard(&mut self, h: f64) -> Option<FailureReason> {
         let model = self.model;
         self.guarded = None;
         for (e, (el, c)) in model.elements().iter().zip(&self.sys.cable).enumerate() {
@@ -177,17 +174,15 @@ impl DynamicSolver<'_> {
             let dot = d0[0] * d1[0] + d0[1] * d1[1] + d0[2] * d1[2];
             let resisted = el.rc > 0.0 || c.strain > 0.0 || self.outputs.strain[e] > 0.0;
             if dot < 0.0 && resisted {
-                return Some(format!(
-                    "element {e} turned over in one step (its direction reversed while it carried load)"
-                ));
+                return Some(FailureReason::ElementTurnedOver { element: e });
             }
         }
         for (i, t) in model.net_triangles().iter().enumerate() {
             if let Some(family) = t.turned_over(&self.state.x, &self.x1) {
-                return Some(format!(
-                    "net triangle {i}: its {family} twines turned over in one step (their \
-                     direction reversed while they carried load)"
-                ));
+                return Some(FailureReason::TwinesTurnedOver {
+                    triangle: i,
+                    family,
+                });
             }
         }
         let mut trial = std::mem::take(&mut self.trial);
@@ -205,10 +200,7 @@ impl DynamicSolver<'_> {
             - b.support_work_static;
         let scale = e_old.max(e_new) + b.work_magnitude + self.f_floor * model.mean_length;
         if created > ENERGY_GROWTH_TOL * scale {
-            return Some(format!(
-                "{ENERGY_CREATED} ({created:.3e} J, {:.1} % of {scale:.3e} J)",
-                100.0 * created / scale
-            ));
+            return Some(FailureReason::EnergyCreated { created, scale });
         }
         // Accepted: the bookkeeping reuses these outputs and this balance.
         self.guarded = Some(b);

@@ -2,7 +2,8 @@
 //! #step-control): the solver and its state here; one file per job beside it — the settings
 //! (`settings.rs`), the step control (`step_control.rs`), the energy ledger (`energy.rs`), the
 //! Newton loop every implicit scheme uses (`newton.rs`) and one file per time scheme
-//! (`hht.rs`, `midpoint.rs`) behind the dispatch of `scheme.rs`.
+//! (`hht.rs`, `midpoint.rs`) behind the dispatch of `scheme.rs`; a saved state for a
+//! coupling's save and restore (`snapshot.rs`).
 
 mod energy;
 mod hht;
@@ -10,11 +11,13 @@ mod midpoint;
 mod newton;
 mod scheme;
 mod settings;
+mod snapshot;
 mod step_control;
 
-pub use energy::{ENERGY_CREATED, ENERGY_GROWTH_TOL, Energies};
+pub use energy::{ENERGY_GROWTH_TOL, Energies};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
+pub use snapshot::Snapshot;
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
 
 use crate::error::{FemError, Result, invalid};
@@ -273,6 +276,25 @@ impl<'m> DynamicSolver<'m> {
     /// Whether t_end has been reached.
     pub fn is_finished(&self) -> bool {
         self.state.t >= self.st.t_end - 1e-9 * self.st.dt
+    }
+    /// Moves the end time to `t_end` [s], not before the current time: a coupling advances
+    /// the solver call by call, each call landing on its own end with the solver's own step
+    /// (docs/theory/fem.md#coupling). After a failed step (Δt below `dt_min`) the step starts
+    /// again from the nominal dt, so a call can be retried.
+    pub fn extend_to(&mut self, t_end: f64) -> Result<()> {
+        if !(t_end.is_finite() && t_end >= self.state.t) {
+            return Err(invalid(
+                "t_end [s]",
+                t_end,
+                format!("finite and not before the current time {} s", self.state.t),
+            ));
+        }
+        self.st.t_end = t_end;
+        if self.dt_cur < self.st.dt_min.unwrap_or(self.st.dt / 1024.0) {
+            self.dt_cur = self.st.dt;
+            self.good_steps = 0;
+        }
+        Ok(())
     }
     /// Accepted steps so far.
     pub fn n_steps(&self) -> usize {

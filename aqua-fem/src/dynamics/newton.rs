@@ -5,6 +5,7 @@
 
 use super::DynamicSolver;
 use crate::error::Result;
+use crate::failure::FailureReason;
 use crate::line_relaxation::StepKinematics;
 use crate::loads::LoadProvider;
 use crate::system::{EvalOptions, NONE, System};
@@ -30,7 +31,7 @@ const MIN_STEP_SCALE: f64 = 1.0 / 16.0;
 
 /// Why an attempt failed, with its residual history.
 pub(super) struct Attempt {
-    pub(super) reason: String,
+    pub(super) reason: FailureReason,
     pub(super) history: Vec<f64>,
 }
 
@@ -84,7 +85,7 @@ impl DynamicSolver<'_> {
         let mut increases = 0usize;
         // The last update was made with a fresh J and is expected to end the step.
         let mut expect_done = false;
-        let fail = |reason: String, hist: &Vec<f64>| Attempt {
+        let fail = |reason: FailureReason, hist: &Vec<f64>| Attempt {
             reason,
             history: hist.clone(),
         };
@@ -107,7 +108,7 @@ impl DynamicSolver<'_> {
             let lazy = refactor && expect_done && self.lu_valid && self.lu_h == h;
             let oe = if refactor && !lazy { &o } else { &o_res };
             if let Err(e) = self.evaluate_at_step(provider, oe) {
-                return Err(fail(e.to_string(), &hist));
+                return Err(fail(e.into(), &hist));
             }
             let mut rn = 0.0;
             for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
@@ -120,19 +121,19 @@ impl DynamicSolver<'_> {
             let f_ref = self.f_ref();
             hist.push(rn / f_ref);
             if !rn.is_finite() {
-                return Err(fail("non-finite residual".into(), &hist));
+                return Err(fail(FailureReason::NonFiniteResidual, &hist));
             }
             if it == 0 {
                 r0 = rn;
             } else if rn > 1e4 * r0 && rn > self.st.tol * f_ref {
-                return Err(fail("residual grew by more than 1e4".into(), &hist));
+                return Err(fail(FailureReason::ResidualGrew, &hist));
             }
             let tol = self.st.tol * f_ref;
             if lazy {
                 if rn <= tol {
                     refactor = false;
                 } else if let Err(e) = self.evaluate_at_step(provider, &o) {
-                    return Err(fail(e.to_string(), &hist));
+                    return Err(fail(e.into(), &hist));
                 }
             }
             let max_strain = self.st.max_strain;
@@ -143,7 +144,10 @@ impl DynamicSolver<'_> {
                 .find(|c| c.strain.abs() > max_strain)
             {
                 Some(c) => Err(Attempt {
-                    reason: format!("strain {:.3e} beyond max_strain {max_strain}", c.strain),
+                    reason: FailureReason::StrainLimit {
+                        strain: c.strain,
+                        max_strain,
+                    },
                     history: hist.clone(),
                 }),
                 None => Ok(()),
@@ -171,13 +175,13 @@ impl DynamicSolver<'_> {
                 // Contraction below 2×: re-form J at this iterate.
                 refactor = true;
                 if let Err(e) = self.evaluate_at_step(provider, &o) {
-                    return Err(fail(e.to_string(), &hist));
+                    return Err(fail(e.into(), &hist));
                 }
             }
             if refactor {
                 self.lu_valid = false;
                 if let Err(e) = self.sys.factorize() {
-                    return Err(fail(e.to_string(), &hist));
+                    return Err(fail(e.into(), &hist));
                 }
                 self.lu_valid = true;
                 self.lu_h = h;
@@ -223,7 +227,7 @@ impl DynamicSolver<'_> {
             };
             let settled = match self.sys.solve_within(&mut self.dx, floor, bound) {
                 Ok(settled) => settled,
-                Err(e) => return Err(fail(e.to_string(), &hist)),
+                Err(e) => return Err(fail(e.into(), &hist)),
             };
             let dinf = self.dx.iter().fold(0.0f64, |m, d| m.max(d.abs()));
             if settled || (rn <= tol && dinf <= xtol) {
@@ -272,17 +276,14 @@ impl DynamicSolver<'_> {
                     // The plain Newton iteration would have failed here: for HHT-α that
                     // failure, and the halving it forces, is what resolves the event
                     // (docs/theory/fem.md#line-relaxation-hht).
-                    return Err(fail(
-                        format!(
-                            "a line tightened across more than {front} elements within the step"
-                        ),
-                        &hist,
-                    ));
+                    return Err(fail(FailureReason::LineFront { limit: front }, &hist));
                 }
             }
         }
         Err(fail(
-            format!("no convergence in {} Newton iterations", self.st.max_iter),
+            FailureReason::NoConvergence {
+                iterations: self.st.max_iter,
+            },
             &hist,
         ))
     }
@@ -321,7 +322,7 @@ impl DynamicSolver<'_> {
             &o,
         ) {
             return Err(Attempt {
-                reason: e.to_string(),
+                reason: e.into(),
                 history: hist,
             });
         }

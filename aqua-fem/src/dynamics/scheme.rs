@@ -9,6 +9,7 @@ use super::midpoint::Midpoint;
 use super::settings::DynamicSettings;
 use crate::cable::CableEval;
 use crate::error::Result;
+use crate::failure::SchemeKind;
 use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::system::{Coef, EvalOptions, System};
@@ -46,15 +47,11 @@ impl Scheme {
         }
     }
 
-    /// What a user can change in this scheme when a step fails: its numerical damping.
-    pub(crate) fn failure_hint(&self) -> String {
+    /// Which scheme this is, for the hints of its failures.
+    pub(crate) fn kind(&self) -> SchemeKind {
         match self {
-            Self::Hht(_) => {
-                "a larger `alpha` or a smaller `rho_inf` (HHT-α's high-frequency damping)".into()
-            }
-            Self::Midpoint(_) => "`theta` above 0.5 (the energy-decaying midpoint rule, e.g. \
-                 0.6 to 0.75)"
-                .into(),
+            Self::Hht(_) => SchemeKind::Hht,
+            Self::Midpoint(_) => SchemeKind::Midpoint,
         }
     }
 
@@ -205,9 +202,10 @@ mod tests {
     #[test]
     fn a_failed_step_names_the_damping_of_its_own_scheme() {
         let mut st = DynamicSettings::new(0.1, 1.0);
-        let hht = Scheme::new(&st, 3).failure_hint();
+        let failed = crate::failure::FailureReason::NonFiniteResidual;
+        let hht = failed.hint(Scheme::new(&st, 3).kind());
         st.midpoint = true;
-        let mid = Scheme::new(&st, 3).failure_hint();
+        let mid = failed.hint(Scheme::new(&st, 3).kind());
         assert!(hht.contains("alpha") && !hht.contains("theta"), "{hht}");
         assert!(mid.contains("theta") && !mid.contains("alpha"), "{mid}");
     }

@@ -7,6 +7,7 @@ use super::energy::Energies;
 use super::newton::Attempt;
 use crate::cable::CableEval;
 use crate::error::{FemError, Result};
+use crate::failure::{FailureKind, FailureReason};
 use crate::loads::LoadProvider;
 use serde::{Deserialize, Serialize};
 
@@ -44,8 +45,8 @@ pub struct StepControl {
     pub regrowths: usize,
     /// Smallest step tried [s] (0 before any halving).
     pub smallest_dt: f64,
-    /// Halvings per reason, in order of first occurrence.
-    pub reasons: Vec<(String, usize)>,
+    /// Halvings per kind of reason, in order of first occurrence.
+    pub reasons: Vec<(FailureKind, usize)>,
     /// The first [`StepControl::MAX_EVENTS`] halvings.
     pub events: Vec<StepEvent>,
     /// Largest local time-discretisation error estimate of a step [m]
@@ -124,36 +125,24 @@ pub struct StepEvent {
     pub dt: f64,
     /// Step tried next [s].
     pub next_dt: f64,
-    /// Why it failed.
+    /// Why it failed (the reason's message).
     pub reason: String,
+    /// The kind of reason.
+    pub kind: FailureKind,
 }
 
 impl StepControl {
     /// Halvings kept in `events`.
     pub const MAX_EVENTS: usize = 100;
 
-    fn record(&mut self, t: f64, dt: f64, next_dt: f64, reason: &str) {
+    fn record(&mut self, t: f64, dt: f64, next_dt: f64, reason: &FailureReason) {
         self.halvings += 1;
         self.smallest_dt = if self.smallest_dt > 0.0 {
             self.smallest_dt.min(next_dt)
         } else {
             next_dt
         };
-        // Group by the kind of reason: the text before any parenthesis, numbers as "…".
-        let kind: String = reason
-            .split('(')
-            .next()
-            .unwrap_or(reason)
-            .split_whitespace()
-            .map(|w| {
-                if w.contains(|c: char| c.is_ascii_digit()) {
-                    "…"
-                } else {
-                    w
-                }
-            })
-            .collect::<Vec<_>>()
-            .join(" ");
+        let kind = reason.kind();
         match self.reasons.iter_mut().find(|(k, _)| *k == kind) {
             Some((_, n)) => *n += 1,
             None => self.reasons.push((kind, 1)),
@@ -164,6 +153,7 @@ impl StepControl {
                 dt,
                 next_dt,
                 reason: reason.to_string(),
+                kind,
             });
         }
     }
@@ -358,7 +348,7 @@ impl DynamicSolver<'_> {
             min_strain_element: mins.0,
             min_strain: mins.1,
             history: fail.history,
-            scheme_hint: self.scheme.failure_hint(),
+            scheme: self.scheme.kind(),
         }))
     }
 }

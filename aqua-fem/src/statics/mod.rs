@@ -13,6 +13,7 @@ use support::{check_held_horizontally, check_held_up, check_supported, parts};
 
 use crate::cable;
 use crate::error::{FemError, Result};
+use crate::failure::FailureReason;
 use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::seabed::BedLaw;
@@ -21,7 +22,7 @@ use crate::system::{Coef, EvalOptions, System};
 
 /// Failure of one Newton solve.
 struct NewtonFail {
-    reason: String,
+    reason: FailureReason,
     history: Vec<f64>,
     /// The observer asked to stop (not a failure of the method).
     stopped: bool,
@@ -545,7 +546,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         self.progress.damping = mu;
         if (self.observer)(&self.progress) == StaticControl::Stop {
             return Err(NewtonFail {
-                reason: "interrupted".into(),
+                reason: FailureReason::Interrupted,
                 history: hist.clone(),
                 stopped: true,
                 fatal: None,
@@ -660,14 +661,14 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
         follow: bool,
     ) -> std::result::Result<(usize, Vec<f64>), NewtonFail> {
         let mut hist = Vec::new();
-        let fail = |reason: String, hist: &Vec<f64>| NewtonFail {
+        let fail = |reason: FailureReason, hist: &Vec<f64>| NewtonFail {
             reason,
             history: hist.clone(),
             stopped: false,
             fatal: None,
         };
         if let Err(e) = self.eval(s, false, true) {
-            return Err(fail(e.to_string(), &hist));
+            return Err(fail(e.into(), &hist));
         }
         let xtol = 1e-6 * self.l_ref;
         let start = self.iterations;
@@ -686,7 +687,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 return Err(stop);
             }
             if !rn.is_finite() {
-                return Err(fail("non-finite residual".into(), &hist));
+                return Err(fail(FailureReason::NonFiniteResidual, &hist));
             }
             let tol = self.st.tol * self.f_ref;
             if watched.is_none() && ((rn <= tol && dx_last <= xtol) || rn <= self.f_noise) {
@@ -706,7 +707,9 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             let verdict = loop {
                 if self.iterations - start >= self.st.max_iter {
                     return Err(fail(
-                        format!("no convergence in {} iterations", self.st.max_iter),
+                        FailureReason::NoConvergence {
+                            iterations: self.st.max_iter,
+                        },
                         &hist,
                     ));
                 }
@@ -745,12 +748,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 *mu = (*mu * nu).max(MU_RESTART);
                 nu *= 2.0;
                 if *mu > MU_MAX {
-                    return Err(fail(
-                        "no step lowers the energy (damping exhausted): the structure may have \
-                         no equilibrium"
-                            .into(),
-                        &hist,
-                    ));
+                    return Err(fail(FailureReason::DampingExhausted, &hist));
                 }
             };
             let verdict = match (verdict, watched.take()) {
@@ -774,7 +772,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                     *mu = (*mu * 2.0).max(MU_RESTART);
                     watch_ok = false;
                     if let Err(e) = self.eval(s, false, true) {
-                        return Err(fail(e.to_string(), &hist));
+                        return Err(fail(e.into(), &hist));
                     }
                     rn = self.residual(false);
                     dx_last = f64::INFINITY;
@@ -789,7 +787,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             }
             std::mem::swap(&mut self.x, &mut self.x_trial);
             if let Err(e) = self.eval(s, false, true) {
-                return Err(fail(e.to_string(), &hist));
+                return Err(fail(e.into(), &hist));
             }
             rn = self.residual(false);
         }
@@ -801,7 +799,7 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
     /// forces and tangent at the iterate are then evaluated anew.
     fn follow_loads(&mut self, s: f64, hist: &[f64]) -> std::result::Result<bool, NewtonFail> {
         let fatal = |e: FemError| NewtonFail {
-            reason: e.to_string(),
+            reason: e.clone().into(),
             history: hist.to_vec(),
             stopped: false,
             fatal: Some(Box::new(e)),

@@ -41,7 +41,7 @@ impl System {
         let n = self.n_nodes;
         provider.prepare(o.t, x, v).map_err(|e| FemError::Load {
             element: usize::MAX,
-            message: e.0,
+            error: e,
         })?;
         // Cable elements.
         let elements = model.elements();

@@ -4,7 +4,7 @@
 use super::{NONE, System};
 use crate::bending::HingeEval;
 use crate::cable::CableEval;
-use crate::error::{FemError, Result};
+use crate::error::{FemError, LoadError, Result};
 use crate::loads::{LoadProvider, MAX_LOAD_NODES};
 use crate::model::Model;
 use crate::net_triangle::NetTriangleEval;
@@ -49,10 +49,10 @@ impl System {
             if nodes.is_empty() || nodes.len() > MAX_LOAD_NODES {
                 return Err(FemError::Load {
                     element: e,
-                    message: format!(
+                    error: LoadError::msg(format!(
                         "load element has {} nodes; 1 to {MAX_LOAD_NODES} are allowed",
                         nodes.len()
-                    ),
+                    )),
                 });
             }
             let mut arr = [0; MAX_LOAD_NODES];
@@ -67,7 +67,7 @@ impl System {
                 if nodes[..j].contains(&nd) {
                     return Err(FemError::Load {
                         element: e,
-                        message: format!("node {nd} listed twice"),
+                        error: LoadError::msg(format!("node {nd} listed twice")),
                     });
                 }
                 arr[j] = nd;

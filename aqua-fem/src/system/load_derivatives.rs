@@ -3,7 +3,7 @@
 //! (docs/theory/fem.md#loads).
 
 use super::{Coef, norm, sub};
-use crate::error::{FemError, Result};
+use crate::error::{FemError, LoadError, Result};
 use crate::loads::{ElementLoad, LoadProvider, MAX_LOAD_DOFS, MAX_LOAD_NODES, Want};
 
 /// Evaluates one load element into its buffer chunk: [force 3n][added mass 9n][J (3n)²] with
@@ -24,9 +24,9 @@ pub(super) fn load_element<P: LoadProvider + ?Sized>(
     out: &mut ElementLoad,
     tmp: &mut ElementLoad,
 ) -> Result<()> {
-    let err = |m: crate::error::LoadError| FemError::Load {
+    let err = |m: LoadError| FemError::Load {
         element: e,
-        message: m.0,
+        error: m,
     };
     out.reset(nn);
     prov.element_load(e, t, &xl[..nn], &vl[..nn], want, out)
@@ -38,7 +38,7 @@ pub(super) fn load_element<P: LoadProvider + ?Sized>(
             if !f.is_finite() {
                 return Err(FemError::Load {
                     element: e,
-                    message: format!("non-finite force {f} on local node {j}"),
+                    error: LoadError::msg(format!("non-finite force {f} on local node {j}")),
                 });
             }
             chunk[3 * j + k] = f;
@@ -115,7 +115,7 @@ pub(super) fn load_element<P: LoadProvider + ?Sized>(
     if jac.iter().any(|v| !v.is_finite()) {
         return Err(FemError::Load {
             element: e,
-            message: "non-finite load derivative".into(),
+            error: LoadError::msg("non-finite load derivative"),
         });
     }
     Ok(())

@@ -208,7 +208,7 @@ impl LoadProvider for WaterLines {
         let d = [x[1][0] - x[0][0], x[1][1] - x[0][1], x[1][2] - x[0][2]];
         let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if l <= 0.0 {
-            return Err(LoadError("zero-length line".into()));
+            return Err(LoadError::msg("zero-length line"));
         }
         let u = [d[0] / l, d[1] / l, d[2] / l];
         if 0.5 * (x[0][2] + x[1][2]) < 0.0 {
