@@ -10,13 +10,12 @@ use crate::collar::{
     default_bracket_section, default_pipe_section, default_sinker_tube_section,
 };
 use crate::error::{MeshError, Result};
-use crate::mesh::{
-    CageCounts, MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride,
-    replicate,
-};
-use crate::net::{NetElement, NetParams};
+use crate::mesh_builder::{MeshBuilder, replicate};
+use crate::model::{CageCounts, CageType, Mesh, NetElement, Object, ObjectKind, PanelNodes, Role};
+use crate::net::{NetParams, NetResolved};
 use crate::net_triangle::{TwineFrame, make_net_triangles};
-use crate::{Mesh, NetResolved};
+use crate::section::Section;
+use crate::section_override::SectionOverride;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -33,59 +32,8 @@ pub const DEFAULT_ROPE_SPACING: f64 = 2.5;
 /// Most nodes a builder accepts (more is likely a unit mistake).
 pub const MAX_NODES: usize = 2_000_000;
 
-/// Cage type code (`type` key).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
-pub enum CageType {
-    /// Circular, conical wall, sinker tube.
-    #[serde(rename = "CCT")]
-    Cct,
-    /// Circular, conical wall, central sinker.
-    #[serde(rename = "CCS")]
-    Ccs,
-    /// Circular, straight wall, sinker masses.
-    #[serde(rename = "CSM")]
-    Csm,
-    /// Square, straight wall, sinker masses.
-    #[serde(rename = "SSM")]
-    Ssm,
-    /// Alias of CCT (a notice recommends CCT).
-    #[serde(rename = "CST")]
-    Cst,
-}
-
+/// Keys of the `[[cage]]` table of each cage type (the cage builder's schema).
 impl CageType {
-    /// The code as written in the scene (`CCT`, …).
-    pub fn code(self) -> &'static str {
-        match self {
-            CageType::Cct => "CCT",
-            CageType::Ccs => "CCS",
-            CageType::Csm => "CSM",
-            CageType::Ssm => "SSM",
-            CageType::Cst => "CST",
-        }
-    }
-
-    /// Parse a code (case-insensitive).
-    pub fn from_code(s: &str) -> Option<Self> {
-        match s.to_ascii_uppercase().as_str() {
-            "CCT" => Some(CageType::Cct),
-            "CCS" => Some(CageType::Ccs),
-            "CSM" => Some(CageType::Csm),
-            "SSM" => Some(CageType::Ssm),
-            "CST" => Some(CageType::Cst),
-            _ => None,
-        }
-    }
-
-    /// CST → CCT; others unchanged.
-    pub fn canonical(self) -> Self {
-        if self == CageType::Cst {
-            CageType::Cct
-        } else {
-            self
-        }
-    }
-
     /// Keys of the `[[cage]]` table this type accepts.
     pub fn valid_keys(self) -> Vec<&'static str> {
         let t = self.canonical();

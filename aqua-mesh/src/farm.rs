@@ -28,7 +28,10 @@ use crate::Mesh;
 use crate::cage::CageParams;
 use crate::error::{MeshError, Result};
 use crate::line::hanging_points;
-use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::{Object, ObjectKind, PanelNodes, Role};
+use crate::section::Section;
+use crate::section_override::SectionOverride;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -878,7 +881,7 @@ pub fn weld_tail(mesh: &mut Mesh, targets: &[usize]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cage::CageType;
+    use crate::model::CageType;
 
     fn section(d: f64) -> Option<SectionOverride> {
         Some(SectionOverride {

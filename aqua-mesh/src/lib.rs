@@ -49,27 +49,33 @@ pub mod farm;
 pub mod gmsh;
 pub mod limits;
 pub mod line;
-pub mod mesh;
+mod mesh_builder;
+pub mod model;
 pub mod net;
 pub mod net_triangle;
 pub mod panel;
+pub mod section;
+pub mod section_override;
+pub mod summary;
 pub mod vtm;
 
 pub use buoy::{BUOY_GROUP, buoy_node};
-pub use cage::{CageParams, CageType, ResolvedCage};
+pub use cage::{CageParams, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
 pub use gmsh::{GmshParams, import_gmsh, read_msh};
 pub use limits::MAX_LENGTH;
 pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
-pub use mesh::{
-    BendingElement, CageCounts, DEFAULT_POISSON_RATIO, Group, GroupSummary, LineElement, Mesh,
-    MeshSummary, Object, ObjectKind, ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section,
-    SectionOverride,
+pub use model::{
+    CageCounts, CageType, Group, LineElement, Mesh, MeshOrientation, NetElement, NetGrouping,
+    Object, ObjectKind, Panel, PanelNodes, PointWeight, Role,
 };
-pub use net::{MeshOrientation, NetElement, NetGrouping, NetParams, NetResolved, TwineAreas};
+pub use net::{NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};
+pub use section::{BendingElement, DEFAULT_POISSON_RATIO, Section, TENSION_ONLY};
+pub use section_override::SectionOverride;
+pub use summary::{GroupSummary, MeshSummary, ObjectSummary};
 pub use vtm::{
     BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,
 };

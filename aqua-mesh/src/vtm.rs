@@ -64,7 +64,7 @@
 //! power cut nothing is promised (the page cache may not have reached the disk).
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, PanelNodes, Role};
+use crate::model::{Mesh, PanelNodes, Role};
 use base64::Engine;
 use nalgebra::Point3;
 use std::fmt::Write as _;
