@@ -6,8 +6,8 @@
 //!   one section or [`LineSegment`]s), the node of a free buoy ([`buoy_node`]) and a farm
 //!   builder: cages on a square mooring grid with frame, bridles, buoys and anchor lines
 //!   ([`FarmParams`], #farm-grid).
-//! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
-//! * VTK export ([`vtm`]): multiblock files with one named block per object and kind, as the
+//! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`io::gmsh`]).
+//! * VTK export ([`io::vtm`]): multiblock files with one named block per object and kind, as the
 //!   geometry of a mesh ([`write_geometry`]) or a run's time series ([`MultiblockSeries`]).
 //!
 //! # Governing relations
@@ -46,7 +46,7 @@ pub mod cage;
 pub mod collar;
 pub mod error;
 pub mod farm;
-pub mod gmsh;
+pub mod io;
 pub mod limits;
 pub mod line;
 mod mesh_builder;
@@ -57,14 +57,16 @@ pub mod panel;
 pub mod section;
 pub mod section_override;
 pub mod summary;
-pub mod vtm;
 
 pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
-pub use gmsh::{GmshParams, import_gmsh, read_msh};
+pub use io::gmsh::{GmshParams, import_gmsh, read_msh};
+pub use io::vtm::{
+    BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,
+};
 pub use limits::MAX_LENGTH;
 pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
 pub use model::{
@@ -76,9 +78,6 @@ pub use panel::{PanelFixed, PanelParams};
 pub use section::{BendingElement, DEFAULT_POISSON_RATIO, Section, TENSION_ONLY};
 pub use section_override::SectionOverride;
 pub use summary::{GroupSummary, MeshSummary, ObjectSummary};
-pub use vtm::{
-    BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,
-};
 
 /// Build several cages, panels or lines into one mesh (objects appended in order).
 pub fn merge(meshes: impl IntoIterator<Item = Mesh>) -> Mesh {

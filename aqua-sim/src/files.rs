@@ -309,7 +309,7 @@ impl RunFiles {
             BlockArray::int("supported", self.supported.clone()),
         ];
         for a in &point {
-            if let aqua_mesh::vtm::ArrayValues::F64 { values, .. } = &a.values {
+            if let aqua_mesh::io::vtm::ArrayValues::F64 { values, .. } = &a.values {
                 finite(&a.name, values)?;
             }
         }
