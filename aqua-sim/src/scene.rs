@@ -28,7 +28,7 @@ use crate::error::{Result, SimError};
 use crate::overrides::Override;
 use aqua_env::SeaSpec;
 use aqua_fem::{DynamicSettings, ExplicitScheme, ExplicitSettings, MassMatrix, StaticSettings};
-use aqua_hydro::morison::MorisonModelId;
+use aqua_hydro::MorisonModelId;
 use aqua_hydro::screen::ScreenModelId;
 use aqua_hydro::wake::WakeSpec;
 use aqua_mesh::{CageParams, FarmParams, GmshParams, LineParams, PanelParams, SectionOverride};

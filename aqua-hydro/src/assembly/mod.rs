@@ -24,11 +24,11 @@
 use crate::cage_wake::CageWake;
 use crate::cylinder::RE_CRISIS;
 use crate::error::{HydroError, check_non_negative, check_positive, check_solidity};
-use crate::line::{self, LineProps};
-use crate::morison::MorisonModel;
+use crate::morison_coefficients::MorisonModel;
+use crate::morison_line::{self, LineProps};
+use crate::net_panel::{self, M3, NetProps, V3, Want};
 use crate::net_triangle::TwineMap;
-use crate::panel::{self, M3, NetProps, V3, Want};
-use crate::point::{self, PointProps, PointShape};
+use crate::point_body::{self, PointProps, PointShape};
 use crate::screen::{RE_MAX, ScreenModel};
 use crate::wake::{Wake, WakeCell, WakeModel, WakeUpdate, unramped_current};
 use aqua_env::{FlowPoint, Phase, Sea};
@@ -887,7 +887,8 @@ impl LoadAssembly {
                         }
                         None => (panel.net, None),
                     };
-                    let mut t = panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
+                    let mut t =
+                        net_panel::triangle(&net, p, zeta, w, weight, self.rho, self.nu, want);
                     if let Some(grad) = dsn
                         && grad.iter().any(|g| g.norm_squared() > 0.0)
                     {
@@ -898,7 +899,7 @@ impl LoadAssembly {
                                 solidity: sn,
                                 ..net
                             };
-                            panel::triangle(
+                            net_panel::triangle(
                                 &props,
                                 p,
                                 zeta,
@@ -956,7 +957,8 @@ impl LoadAssembly {
                 let w = uf - mean(v[0], v[1]);
                 let xx = [V3::from(x[0]), V3::from(x[1])];
                 let zeta = [f0.eta - x[0][2], f1.eta - x[1][2]];
-                let out = line::line(&l.props, xx, zeta, w, af, self.rho, self.nu, self.g, want);
+                let out =
+                    morison_line::line(&l.props, xx, zeta, w, af, self.rho, self.nu, self.g, want);
                 let half = 0.5 * out.force;
                 sink.force(0, half);
                 sink.force(1, half);
@@ -983,7 +985,7 @@ impl LoadAssembly {
                 let w = V3::from(f.current) + V3::from(f.wave_vel) - V3::from(v[0]);
                 let acc = V3::from(f.current_acc) + V3::from(f.wave_acc);
                 let zeta = f.eta - x[0][2];
-                let out = point::point(&p.props, zeta, w, acc, self.rho, self.g, want);
+                let out = point_body::point(&p.props, zeta, w, acc, self.rho, self.g, want);
                 sink.force(0, out.force);
                 sink.mass(0, &out.added_mass);
                 if want.dfdv {

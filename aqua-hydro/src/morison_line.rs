@@ -2,8 +2,8 @@
 //! added mass and buoyancy, all scaled by the wetted fraction of the circular section
 //! (docs/theory/hydrodynamics.md#morison-line-model, #line-jacobians).
 
-use crate::morison::MorisonModel;
-use crate::panel::{M3, V3, Want, ZERO_SPEED};
+use crate::morison_coefficients::MorisonModel;
+use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 use std::f64::consts::PI;
 
@@ -153,7 +153,7 @@ pub fn line(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morison::MorisonModel;
+    use crate::morison_coefficients::MorisonModel;
     use proptest::prelude::*;
 
     const RHO: f64 = 1025.0;

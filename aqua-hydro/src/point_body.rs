@@ -1,7 +1,7 @@
 //! Point bodies (buoys, sinkers): drag, inertia, added mass and buoyancy on one node
 //! (docs/theory/hydrodynamics.md#point-bodies, docs/theory/farm.md#buoys).
 
-use crate::panel::{M3, V3, Want, ZERO_SPEED};
+use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 
 /// How a point body's submerged volume and wet projected area grow as it goes under.
