@@ -17,6 +17,8 @@
 //!   ρ_w·φ̄·A_v·L0·(C_a·P_n + C_at·P_t); models M1–M5 and const of [`morison_coefficients`].
 //! - Point bodies ([`point_body`]): F = φ_A·½ρ_w(C_D A)|U_r|U_r + φ_V·[ρ_w V(1 + C_a)ā_f
 //!   + ρ_w g V ẑ], φ_V, φ_A the wet fractions of volume and projected area (a prism's linear law, or a sphere's cap).
+//! - Buoyancy ([`buoyancy`]): ρ_w·g·V·ẑ of the displaced volume, times the wetted fraction of
+//!   [`wetted`] (circular sections, point bodies) like every volume force.
 //! - Wake: r = 1, clamp(f), 1 − 0.46·C_D0 (Løland) or clamp((c + 0.05 − 0.38Sn)/(c + 0.05))
 //!   (Cheng) on the downstream half of each cage, (c_e − o)_h·û_h > δ ([`wake`]); between
 //!   cages, r_c² of every other cage c with the element in its downstream strip of half-width
@@ -29,6 +31,7 @@
 //! output layout.
 
 pub mod assembly;
+pub mod buoyancy;
 pub mod cage_wake;
 pub mod coefficients;
 pub mod cylinder;
