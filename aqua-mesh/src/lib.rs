@@ -40,6 +40,18 @@
 //! cyclic order, normal out of the cage), [`Group`]s (name, [`Role`], members, [`Section`]),
 //! [`PointWeight`]s and one [`Object`] per builder call (with its [`NetGrouping`]). All units SI,
 //! z up, z = 0 at the still-water level.
+//!
+//! # Layers
+//!
+//! Each layer uses only those above it:
+//!
+//! 1. [`error`], [`limits`];
+//! 2. [`section`] (sections and materials) and [`section_override`] (their scene keys);
+//! 3. [`model`]: the mesh, its elements, groups, roles and objects, with the builders'
+//!    descriptions of what they built ([`CageType`], [`CageCounts`], [`NetGrouping`]);
+//! 4. the builders ([`cage`], [`panel`], [`line`](mod@line), [`buoy`], [`farm`], with [`net`],
+//!    [`net_triangle`] and [`collar`]), adding to a mesh through an internal mesh builder;
+//! 5. [`summary`] (reports) and [`io`] (gmsh import, VTK export).
 
 pub mod buoy;
 pub mod cage;

@@ -11,11 +11,11 @@ pub struct Group {
     pub name: String,
     /// What the group is for.
     pub role: Role,
-    /// Index of the owning object in [`Mesh::objects`].
+    /// Index of the owning object in [`Mesh::objects`](crate::Mesh::objects).
     pub object: u32,
-    /// Line elements of the group (indices into [`Mesh::lines`]), empty for node/panel groups.
+    /// Line elements of the group (indices into [`Mesh::lines`](crate::Mesh::lines)), empty for node/panel groups.
     pub lines: Vec<usize>,
-    /// Panels of the group (indices into [`Mesh::panels`]).
+    /// Panels of the group (indices into [`Mesh::panels`](crate::Mesh::panels)).
     pub panels: Vec<usize>,
     /// Nodes of the group, sorted and unique. For line and panel groups: all their nodes.
     pub nodes: Vec<usize>,
@@ -28,7 +28,7 @@ pub struct Group {
 pub struct LineElement {
     /// End nodes `[a, b]`.
     pub nodes: [usize; 2],
-    /// Index of its (element) group in [`Mesh::groups`].
+    /// Index of its (element) group in [`Mesh::groups`](crate::Mesh::groups).
     pub group: usize,
     /// Owning object.
     pub object: u32,
@@ -67,7 +67,7 @@ impl PanelNodes {
 pub struct Panel {
     /// Corner nodes.
     pub nodes: PanelNodes,
-    /// Index of its group in [`Mesh::groups`].
+    /// Index of its group in [`Mesh::groups`](crate::Mesh::groups).
     pub group: usize,
     /// Owning object.
     pub object: u32,

@@ -109,7 +109,7 @@ pub(super) fn write_vtm(
 
 /// Writes the undeformed geometry of `mesh` as the multiblock file `path` (`<stem>.vtm`) with
 /// its block files in `<stem>/` next to it: the blocks, points and built-in arrays of a run's
-/// `<stem>_reference.vtm` ([`MultiblockSeries::write_reference`]), without a time. The
+/// `<stem>_reference.vtm` ([`MultiblockSeries::write_reference`](super::MultiblockSeries::write_reference)), without a time. The
 /// directory `<stem>/` is replaced. Returns the `.vtm` path.
 pub fn write_geometry(path: &Path, mesh: &Mesh) -> Result<PathBuf> {
     let bad = |path: &Path, m: &str| MeshError::VtkPath {
