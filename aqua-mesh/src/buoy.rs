@@ -4,7 +4,8 @@
 
 use crate::Mesh;
 use crate::error::{MeshError, Result};
-use crate::mesh::{MeshBuilder, Object, ObjectKind, Role};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::{Object, ObjectKind, Role};
 use nalgebra::Point3;
 
 /// The node group of a buoy object.

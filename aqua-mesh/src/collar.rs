@@ -7,7 +7,9 @@
 //! `collar.bracket_spacing` metres of the inner pipe.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{MeshBuilder, Role, Section};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::Role;
+use crate::section::Section;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 

@@ -6,8 +6,8 @@
 //!   one section or [`LineSegment`]s), the node of a free buoy ([`buoy_node`]) and a farm
 //!   builder: cages on a square mooring grid with frame, bridles, buoys and anchor lines
 //!   ([`FarmParams`], #farm-grid).
-//! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`gmsh`]).
-//! * VTK export ([`vtm`]): multiblock files with one named block per object and kind, as the
+//! * gmsh import of MSH 4.1 (ASCII and binary, through `mshio`) and MSH 2.2 ASCII ([`io::gmsh`]).
+//! * VTK export ([`io::vtm`]): multiblock files with one named block per object and kind, as the
 //!   geometry of a mesh ([`write_geometry`]) or a run's time series ([`MultiblockSeries`]).
 //!
 //! # Governing relations
@@ -40,39 +40,56 @@
 //! cyclic order, normal out of the cage), [`Group`]s (name, [`Role`], members, [`Section`]),
 //! [`PointWeight`]s and one [`Object`] per builder call (with its [`NetGrouping`]). All units SI,
 //! z up, z = 0 at the still-water level.
+//!
+//! # Layers
+//!
+//! Each layer uses only those above it:
+//!
+//! 1. [`error`], [`limits`];
+//! 2. [`section`] (sections and materials) and [`section_override`] (their scene keys);
+//! 3. [`model`]: the mesh, its elements, groups, roles and objects, with the builders'
+//!    descriptions of what they built ([`CageType`], [`CageCounts`], [`NetGrouping`]);
+//! 4. the builders ([`cage`], [`panel`], [`line`](mod@line), [`buoy`], [`farm`], with [`net`],
+//!    [`net_triangle`] and [`collar`]), adding to a mesh through an internal mesh builder;
+//! 5. [`summary`] (reports) and [`io`] (gmsh import, VTK export).
 
 pub mod buoy;
 pub mod cage;
 pub mod collar;
 pub mod error;
 pub mod farm;
-pub mod gmsh;
+pub mod io;
 pub mod limits;
 pub mod line;
-pub mod mesh;
+mod mesh_builder;
+pub mod model;
 pub mod net;
 pub mod net_triangle;
 pub mod panel;
-pub mod vtm;
+pub mod section;
+pub mod section_override;
+pub mod summary;
 
 pub use buoy::{BUOY_GROUP, buoy_node};
-pub use cage::{CageParams, CageType, ResolvedCage};
+pub use cage::{CageParams, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
 pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
-pub use gmsh::{GmshParams, import_gmsh, read_msh};
-pub use limits::MAX_LENGTH;
-pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
-pub use mesh::{
-    BendingElement, CageCounts, DEFAULT_POISSON_RATIO, Group, GroupSummary, LineElement, Mesh,
-    MeshSummary, Object, ObjectKind, ObjectSummary, Panel, PanelNodes, PointWeight, Role, Section,
-    SectionOverride,
-};
-pub use net::{MeshOrientation, NetElement, NetGrouping, NetParams, NetResolved, TwineAreas};
-pub use panel::{PanelFixed, PanelParams};
-pub use vtm::{
+pub use io::gmsh::{GmshParams, import_gmsh, read_msh};
+pub use io::vtm::{
     BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,
 };
+pub use limits::MAX_LENGTH;
+pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
+pub use model::{
+    CageCounts, CageType, Group, LineElement, Mesh, MeshOrientation, NetElement, NetGrouping,
+    Object, ObjectKind, Panel, PanelNodes, PointWeight, Role,
+};
+pub use net::{NetParams, NetResolved, TwineAreas};
+pub use panel::{PanelFixed, PanelParams};
+pub use section::{BendingElement, DEFAULT_POISSON_RATIO, Section, TENSION_ONLY};
+pub use section_override::SectionOverride;
+pub use summary::{GroupSummary, MeshSummary, ObjectSummary};
 
 /// Build several cages, panels or lines into one mesh (objects appended in order).
 pub fn merge(meshes: impl IntoIterator<Item = Mesh>) -> Mesh {

@@ -15,7 +15,10 @@
 
 use crate::Mesh;
 use crate::error::{MeshError, Result};
-use crate::mesh::{MeshBuilder, Object, ObjectKind, Role, Section, SectionOverride};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::{Object, ObjectKind, Role};
+use crate::section::{BendingElement, Section};
+use crate::section_override::SectionOverride;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -108,7 +111,7 @@ pub struct LineParams {
     /// `bending` on/off (default: on for a pipe or when `ei` is given).
     pub bending: Option<bool>,
     /// `bending_element`: `rod` (default) or `hinge`.
-    pub bending_element: Option<crate::mesh::BendingElement>,
+    pub bending_element: Option<BendingElement>,
     /// `poisson_ratio` ν (default 0.4).
     pub poisson_ratio: Option<f64>,
     /// `[[line.segment]]`: the line as segments from anchor to fairlead, instead of

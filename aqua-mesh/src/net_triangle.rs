@@ -10,8 +10,9 @@
 //! twines follow the reference direction everywhere.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{MeshBuilder, PanelNodes};
-use crate::net::{MeshOrientation, NetResolved};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::{MeshOrientation, PanelNodes};
+use crate::net::NetResolved;
 use nalgebra::Vector3;
 
 type V3 = Vector3<f64>;
@@ -164,7 +165,8 @@ fn split_quads(b: &mut MeshBuilder, g: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::net::{NetElement, NetParams};
+    use crate::model::NetElement;
+    use crate::net::NetParams;
     use crate::panel::PanelParams;
 
     fn triangle_panel(orientation: MeshOrientation) -> crate::Mesh {

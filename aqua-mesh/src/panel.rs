@@ -4,10 +4,11 @@
 //! Node (i, j) = centre + (i/n_w − ½)·W·e_w + (½ − j/n_h)·H_p·e_u, id = j·(n_w+1) + i.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role};
-use crate::net::{NetElement, NetParams};
+use crate::mesh_builder::MeshBuilder;
+use crate::model::{Mesh, NetElement, Object, ObjectKind, PanelNodes, Role};
+use crate::net::NetParams;
 use crate::net_triangle::{TwineFrame, make_net_triangles};
-use crate::{Mesh, SectionOverride};
+use crate::section_override::SectionOverride;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 

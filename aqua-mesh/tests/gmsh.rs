@@ -1,7 +1,7 @@
 //! gmsh import against fixtures written by real gmsh (see tests/fixtures/README.md); the
 //! expected counts follow from the structured geometry of make_fixtures.py by hand.
 
-use aqua_mesh::gmsh::{import_raw, parse_msh};
+use aqua_mesh::io::gmsh::{import_raw, parse_msh};
 use aqua_mesh::{GmshParams, Mesh, PanelNodes, Role, import_gmsh};
 use std::path::{Path, PathBuf};
 

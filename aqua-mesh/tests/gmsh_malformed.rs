@@ -9,7 +9,7 @@
 //! regression here kills the test binary rather than failing one assertion; the corpus test
 //! lists the cases it runs (`--nocapture`) so the culprit is the last one printed.
 
-use aqua_mesh::gmsh::{RawMsh, import_raw, parse_msh};
+use aqua_mesh::io::gmsh::{RawMsh, import_raw, parse_msh};
 use aqua_mesh::{GmshParams, MeshError};
 use proptest::prelude::*;
 use std::panic::{AssertUnwindSafe, catch_unwind};

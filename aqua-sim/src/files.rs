@@ -1,5 +1,5 @@
 //! Run files: a ParaView multiblock time series (`<scene>.pvd` → `<scene>_NNNNNN.vtm` per output
-//! step → one `.vtu` per object and kind in `<scene>_NNNNNN/`, see [`aqua_mesh::vtm`]), the
+//! step → one `.vtu` per object and kind in `<scene>_NNNNNN/`, see [`aqua_mesh::io::vtm`]), the
 //! undeformed geometry once (`<scene>_reference.vtm`), a pvpython starting point
 //! (`open_in_paraview.py`), `summary.csv` (one row per output step), `extremes.csv` (the
 //! extremes of the load columns over every accepted step, [`crate::extremes`]) and `run.json`
@@ -9,7 +9,7 @@
 //!
 //! Every file is written so that an interrupted run leaves it readable: a step's block files
 //! are written first, then its `.vtm` (temporary name + rename), and only then is the step
-//! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::vtm`]
+//! appended to the `.pvd` (one line, no rewrite); nothing is fsynced (see [`aqua_mesh::io::vtm`]
 //! for what holds when the process stops). A step's `summary.csv` row is written and flushed
 //! before its `.pvd` line, so whatever stops the process — even SIGKILL — `summary.csv` holds
 //! a row for every step the `.pvd` lists (one short write per output step).
@@ -309,7 +309,7 @@ impl RunFiles {
             BlockArray::int("supported", self.supported.clone()),
         ];
         for a in &point {
-            if let aqua_mesh::vtm::ArrayValues::F64 { values, .. } = &a.values {
+            if let aqua_mesh::io::vtm::ArrayValues::F64 { values, .. } = &a.values {
                 finite(&a.name, values)?;
             }
         }

@@ -241,7 +241,7 @@ fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> 
                 node: b.node,
                 props: PointProps {
                     volume: b.volume,
-                    shape: aqua_hydro::point::PointShape::Prism { height: b.height },
+                    shape: aqua_hydro::PointShape::Prism { height: b.height },
                     drag_area: b.drag_area,
                     added_mass: b
                         .added_mass_coefficient

@@ -137,7 +137,7 @@ fn add_net_triangles(
                     net.half_mesh,
                     net.density * area,
                 )
-                .with_compression_ratio(aqua_mesh::mesh::TENSION_ONLY);
+                .with_compression_ratio(aqua_mesh::section::TENSION_ONLY);
                 let name = format!("{}/net_triangles", obj.name);
                 let id = b
                     .add_net_triangle_group(&name, section)

@@ -1,7 +1,7 @@
 //! The hydrodynamic keys a scene adds to aqua-mesh's tables: the `net.*` keys of a net
 //! (screen or Morison drag, wake) and the Morison and inertia keys of a cable group.
 
-use aqua_hydro::morison::MorisonModelId;
+use aqua_hydro::MorisonModelId;
 use aqua_hydro::screen::ScreenModelId;
 use aqua_hydro::wake::WakeSpec;
 use serde::{Deserialize, Serialize};

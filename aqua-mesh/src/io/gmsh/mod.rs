@@ -13,14 +13,14 @@ pub use reader::{
     PhysicalName, RawElement, RawMsh, RawNode, element_type_name, parse_msh, read_msh,
 };
 
-use crate::Mesh;
 use crate::cage::default_frame_section;
 use crate::error::{FilePos, MeshError, Result};
-use crate::mesh::{
-    MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride, replicate,
-};
-use crate::net::{NetElement, NetParams};
+use crate::mesh_builder::{MeshBuilder, replicate};
+use crate::model::{Mesh, NetElement, Object, ObjectKind, PanelNodes, Role};
+use crate::net::NetParams;
 use crate::net_triangle::{TwineFrame, make_net_triangles};
+use crate::section::Section;
+use crate::section_override::SectionOverride;
 use nalgebra::{Point3, Rotation3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, HashMap};

@@ -24,12 +24,18 @@
 //! is made by a small function ([`anchor_line`], the buoy list) so that the buoy and
 //! segmented-line builders can replace them.
 
+mod anchor_line;
+mod grid;
+
+pub use anchor_line::{anchor_line, weld_tail};
+
 use crate::Mesh;
 use crate::cage::CageParams;
 use crate::error::{MeshError, Result};
-use crate::line::hanging_points;
-use crate::mesh::{MeshBuilder, Object, ObjectKind, PanelNodes, Role, Section, SectionOverride};
-use nalgebra::{Point3, Vector3};
+use crate::section::Section;
+use crate::section_override::SectionOverride;
+use grid::{Grid, frame_object};
+use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
 
 /// `[farm.buoy]`: the buoy on every plate (a point body at the top of the plate's pendant).
@@ -577,308 +583,16 @@ fn check_buoy(obj: &str, b: &BuoyParams) -> Result<FarmBuoy> {
     })
 }
 
-/// The grid's geometry.
-struct Grid {
-    columns: usize,
-    rows: usize,
-    spacing: f64,
-    depth: f64,
-    origin: [f64; 2],
-}
-
-impl Grid {
-    fn new(p: &FarmParams) -> Self {
-        Self {
-            columns: p.columns as usize,
-            rows: p.rows as usize,
-            spacing: p.spacing,
-            depth: p.grid_depth,
-            origin: p.origin.unwrap_or([0.0, 0.0]),
-        }
-    }
-
-    /// Plate index of intersection (i, j).
-    fn plate(&self, i: usize, j: usize) -> usize {
-        j * (self.columns + 1) + i
-    }
-
-    fn plate_position(&self, i: usize, j: usize) -> Point3<f64> {
-        let x = self.origin[0] + (i as f64 - self.columns as f64 / 2.0) * self.spacing;
-        let y = self.origin[1] + (j as f64 - self.rows as f64 / 2.0) * self.spacing;
-        Point3::new(x, y, -self.depth)
-    }
-
-    /// Centre of slot (c, r), 1-based, at z = 0.
-    fn cell_centre(&self, c: usize, r: usize) -> Point3<f64> {
-        let a = self.plate_position(c - 1, r - 1);
-        Point3::new(a.x + self.spacing / 2.0, a.y + self.spacing / 2.0, 0.0)
-    }
-
-    /// Outer plates with their outward directions: (tag, i, j, direction).
-    fn outer_plates(&self) -> Vec<(char, usize, usize, Vector3<f64>)> {
-        let (nc, nr) = (self.columns, self.rows);
-        let mut v = Vec::new();
-        for j in 0..=nr {
-            v.push(('e', nc, j, Vector3::x()));
-        }
-        for i in 0..=nc {
-            v.push(('n', i, nr, Vector3::y()));
-        }
-        for j in 0..=nr {
-            v.push(('w', 0, j, -Vector3::x()));
-        }
-        for i in 0..=nc {
-            v.push(('s', i, 0, -Vector3::y()));
-        }
-        v
-    }
-}
-
-fn segments(length: f64, el: f64) -> usize {
+/// Number of elements of about `el` along `length` (at least one).
+pub(super) fn segments(length: f64, el: f64) -> usize {
     (length / el).round().max(1.0) as usize
-}
-
-/// A straight line of elements of about `el` from node `from` to node `to` of group `g`.
-fn straight(b: &mut MeshBuilder, g: usize, from: usize, to: usize, el: f64) {
-    let (a, end) = (b.mesh.nodes[from], b.mesh.nodes[to]);
-    let n = segments((end - a).norm(), el);
-    let mut prev = from;
-    for k in 1..n {
-        let node = b.add_node(a + (end - a) * (k as f64 / n as f64));
-        b.add_line(g, prev, node, None);
-        prev = node;
-    }
-    b.add_line(g, prev, to, None);
-}
-
-/// The collar node of `ring` that points most towards `dir` from `centre`; exact ties (a
-/// corner between two nodes) go to the node farther from the centre line y = centre.y, then
-/// x = centre.x, so that mirror-symmetric farms get mirror-symmetric bridles.
-fn collar_node(
-    mesh: &Mesh,
-    ring: &[usize],
-    centre: Point3<f64>,
-    dir: Vector3<f64>,
-) -> Option<usize> {
-    let key = |n: usize| {
-        let d = mesh.nodes[n] - centre;
-        (d.dot(&dir), d.y.abs(), d.x.abs())
-    };
-    let best = ring
-        .iter()
-        .map(|&n| key(n).0)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let tol = 1e-9 * best.abs().max(1.0);
-    ring.iter()
-        .copied()
-        .filter(|&n| key(n).0 >= best - tol)
-        .max_by(|&a, &b| {
-            let (ka, kb) = (key(a), key(b));
-            ka.1.total_cmp(&kb.1).then(ka.2.total_cmp(&kb.2))
-        })
-}
-
-/// The frame object: plates, buoy nodes, frame lines, pendants and bridles. The bridles'
-/// collar ends are extra nodes at the end of the returned mesh; `welds` lists, in order, the
-/// existing node of `mesh` each of them becomes (for [`weld_tail`] after appending).
-#[allow(clippy::type_complexity)]
-fn frame_object(
-    name: &str,
-    grid: &Grid,
-    frame: &Section,
-    bridle: &Section,
-    el: f64,
-    mesh: &Mesh,
-    collars: &[((usize, usize), Point3<f64>, Vec<usize>)],
-) -> Result<(Mesh, Vec<usize>, Vec<usize>)> {
-    let mut b = MeshBuilder::default();
-    let (nc, nr) = (grid.columns, grid.rows);
-    for j in 0..=nr {
-        for i in 0..=nc {
-            b.add_node(grid.plate_position(i, j));
-        }
-    }
-    let n_plates = (nc + 1) * (nr + 1);
-    let buoys: Vec<usize> = (0..n_plates)
-        .map(|p| {
-            let q = b.mesh.nodes[p];
-            b.add_node(Point3::new(q.x, q.y, 0.0))
-        })
-        .collect();
-    let g_frame = b.group("frame_lines", Role::MooringLine, Some(frame.clone()));
-    for j in 0..=nr {
-        for i in 0..=nc {
-            let p = grid.plate(i, j);
-            if i < nc {
-                let q = grid.plate(i + 1, j);
-                straight(&mut b, g_frame, p, q, el);
-            }
-            if j < nr {
-                let q = grid.plate(i, j + 1);
-                straight(&mut b, g_frame, p, q, el);
-            }
-        }
-    }
-    let g_pend = b.group("pendants", Role::MooringLine, Some(frame.clone()));
-    for (p, &top) in buoys.iter().enumerate() {
-        straight(&mut b, g_pend, p, top, el);
-    }
-    let g_bridle = b.group("bridles", Role::MooringLine, Some(bridle.clone()));
-    let mut welds = Vec::new();
-    let mut ends = Vec::new();
-    for ((c, r), centre, ring) in collars {
-        for (di, dj) in [(0, 0), (1, 0), (1, 1), (0, 1)] {
-            let (i, j) = (c - 1 + di, r - 1 + dj);
-            let plate = grid.plate_position(i, j);
-            let dir = Vector3::new(plate.x - centre.x, plate.y - centre.y, 0.0);
-            let target = collar_node(mesh, ring, *centre, dir).ok_or_else(|| {
-                MeshError::inconsistent(name, "a farm cage has no top_ring to hang bridles on")
-            })?;
-            ends.push((grid.plate(i, j), target));
-        }
-    }
-    // Bridle collar ends become the last nodes, in order.
-    let mut pending = Vec::new();
-    for (p, target) in ends {
-        let a = b.mesh.nodes[p];
-        let end = mesh.nodes[target];
-        let n = segments((end - a).norm(), el);
-        let mut prev = p;
-        for k in 1..n {
-            let node = b.add_node(a + (end - a) * (k as f64 / n as f64));
-            b.add_line(g_bridle, prev, node, None);
-            prev = node;
-        }
-        pending.push((prev, end, target));
-    }
-    for (prev, end, target) in pending {
-        let node = b.add_node(end);
-        b.add_line(g_bridle, prev, node, None);
-        welds.push(target);
-    }
-    b.finish_element_nodes();
-    let g = b.group("plates", Role::Plates, None);
-    b.set_nodes(g, 0..n_plates);
-    let g = b.group("buoys", Role::Buoys, None);
-    b.set_nodes(g, buoys.iter().copied());
-    b.mesh.objects.push(Object {
-        name: name.to_string(),
-        kind: ObjectKind::Frame,
-        origins: vec![[grid.origin[0], grid.origin[1], -grid.depth]],
-        net: None,
-        counts: None,
-        source_node_tags: Vec::new(),
-    });
-    Ok((b.mesh, buoys, welds))
-}
-
-/// An anchor line from `anchor` (fixed, on the seabed `zb`) to `fairlead`: consecutive parts
-/// (group name, section, unstretched length) from the anchor, each with elements of about
-/// `el`; initial shape the inextensible catenary of the total length stretched by the strain
-/// `stretch`, with touchdown when it lies on the seabed (as a `[[line]]`'s). Groups as a
-/// `[[line]]` (`anchor`, `fairlead`, `line_nodes`, `fixed` = anchor).
-pub fn anchor_line(
-    name: &str,
-    anchor: Point3<f64>,
-    fairlead: Point3<f64>,
-    parts: &[(&str, Section, f64)],
-    el: f64,
-    zb: f64,
-    stretch: f64,
-) -> Result<Mesh> {
-    let total: f64 = parts.iter().map(|p| p.2).sum();
-    let counts: Vec<usize> = parts.iter().map(|p| segments(p.2, el)).collect();
-    let n: usize = counts.iter().sum();
-    let arc: Vec<f64> = (0..=n).map(|i| total * i as f64 / n as f64).collect();
-    let mut pts = hanging_points(anchor, fairlead, total, &arc, Some(zb), stretch);
-    if pts.is_empty() {
-        return Err(MeshError::inconsistent(
-            name,
-            "anchor and fairlead coincide",
-        ));
-    }
-    for p in pts.iter_mut() {
-        p.z = p.z.max(zb);
-    }
-    let mut b = MeshBuilder::default();
-    let mut notices = Vec::new();
-    let chord = (fairlead - anchor).norm();
-    if total < chord && (chord - total) / total > 0.01 {
-        notices.push(format!(
-            "warning: {name}: length {total} m is shorter than the chord {chord:.4} m; the line \
-             starts stretched by {:.2} %",
-            100.0 * (chord - total) / total
-        ));
-    }
-    for p in pts {
-        b.add_node(p);
-    }
-    let mut k0 = 0;
-    for ((g, section, len), &m) in parts.iter().zip(&counts) {
-        let gi = b.group(g, Role::MooringLine, Some(section.clone()));
-        for k in k0..k0 + m {
-            b.add_line(gi, k, k + 1, Some(len / m as f64));
-        }
-        k0 += m;
-    }
-    b.finish_element_nodes();
-    for (g, role, nodes) in [
-        ("anchor", Role::Anchor, vec![0]),
-        ("fairlead", Role::Fairlead, vec![n]),
-        ("line_nodes", Role::LineNodes, (0..=n).collect()),
-        ("fixed", Role::Fixed, vec![0]),
-    ] {
-        let gi = b.group(g, role, None);
-        b.set_nodes(gi, nodes);
-    }
-    b.mesh.objects.push(Object {
-        name: name.to_string(),
-        kind: ObjectKind::Line,
-        origins: vec![[anchor.x, anchor.y, anchor.z]],
-        net: None,
-        counts: None,
-        source_node_tags: Vec::new(),
-    });
-    b.mesh.notices = notices;
-    Ok(b.mesh)
-}
-
-/// Merges the last `targets.len()` nodes of the mesh, in order, into the existing nodes
-/// `targets` (a part's end joined to a node of another part); elements, groups and weights
-/// follow.
-pub fn weld_tail(mesh: &mut Mesh, targets: &[usize]) {
-    let k = targets.len();
-    let first = mesh.nodes.len() - k;
-    mesh.nodes.truncate(first);
-    mesh.node_owner.truncate(first);
-    let map = |n: &mut usize| {
-        if *n >= first {
-            *n = targets[*n - first];
-        }
-    };
-    for l in &mut mesh.lines {
-        l.nodes.iter_mut().for_each(map);
-    }
-    for p in &mut mesh.panels {
-        match &mut p.nodes {
-            PanelNodes::Tri(n) => n.iter_mut().for_each(map),
-            PanelNodes::Quad(n) => n.iter_mut().for_each(map),
-        }
-    }
-    for g in &mut mesh.groups {
-        g.nodes.iter_mut().for_each(map);
-        g.nodes.sort_unstable();
-        g.nodes.dedup();
-    }
-    for w in &mut mesh.weights {
-        map(&mut w.node);
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cage::CageType;
+    use crate::model::CageType;
+    use nalgebra::Vector3;
 
     fn section(d: f64) -> Option<SectionOverride> {
         Some(SectionOverride {

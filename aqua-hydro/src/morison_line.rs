@@ -2,8 +2,9 @@
 //! added mass and buoyancy, all scaled by the wetted fraction of the circular section
 //! (docs/theory/hydrodynamics.md#morison-line-model, #line-jacobians).
 
-use crate::morison::MorisonModel;
-use crate::panel::{M3, V3, Want, ZERO_SPEED};
+use crate::buoyancy;
+use crate::morison_coefficients::MorisonModel;
+use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 use std::f64::consts::PI;
 
@@ -128,7 +129,7 @@ pub fn line(
     let cn_i = props.added_mass + if props.froude_krylov { 1.0 } else { 0.0 };
     let ea = e.dot(&acc);
     let f_inertia = rho * vol * (cn_i * (acc - ea * e) + props.added_mass_axial * ea * e);
-    let f_buoy = V3::new(0.0, 0.0, rho * g * vol);
+    let f_buoy = buoyancy::force(rho, g, vol);
     let f_tilde = f_drag + f_inertia + f_buoy;
     out.force = phi * f_tilde;
     out.added_mass = (phi * rho * vol) * (props.added_mass * pn + props.added_mass_axial * ee);
@@ -153,7 +154,7 @@ pub fn line(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morison::MorisonModel;
+    use crate::morison_coefficients::MorisonModel;
     use proptest::prelude::*;
 
     const RHO: f64 = 1025.0;

@@ -1,7 +1,8 @@
 //! Point bodies (buoys, sinkers): drag, inertia, added mass and buoyancy on one node
 //! (docs/theory/hydrodynamics.md#point-bodies, docs/theory/farm.md#buoys).
 
-use crate::panel::{M3, V3, Want, ZERO_SPEED};
+use crate::buoyancy;
+use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 
 /// How a point body's submerged volume and wet projected area grow as it goes under.
@@ -83,8 +84,8 @@ pub fn point(
     let s = w.norm();
     let kd = 0.5 * rho * props.drag_area;
     let drag = kd * s * w;
-    let volume_part = rho * props.volume * (1.0 + props.added_mass) * acc
-        + V3::new(0.0, 0.0, rho * g * props.volume);
+    let volume_part =
+        rho * props.volume * (1.0 + props.added_mass) * acc + buoyancy::force(rho, g, props.volume);
     let mut dfdw = M3::zeros();
     if want.dfdv && s >= ZERO_SPEED {
         let u = w / s;

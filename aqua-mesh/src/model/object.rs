@@ -1,0 +1,119 @@
+//! Objects in a mesh: what built each object and the numbers it keeps (cage counts, net
+//! grouping, gmsh node tags). The builders fill these descriptions; the model needs none of them.
+
+use crate::model::NetGrouping;
+use serde::{Deserialize, Serialize};
+
+/// Cage type code (`type` key).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
+pub enum CageType {
+    /// Circular, conical wall, sinker tube.
+    #[serde(rename = "CCT")]
+    Cct,
+    /// Circular, conical wall, central sinker.
+    #[serde(rename = "CCS")]
+    Ccs,
+    /// Circular, straight wall, sinker masses.
+    #[serde(rename = "CSM")]
+    Csm,
+    /// Square, straight wall, sinker masses.
+    #[serde(rename = "SSM")]
+    Ssm,
+    /// Alias of CCT (a notice recommends CCT).
+    #[serde(rename = "CST")]
+    Cst,
+}
+
+impl CageType {
+    /// The code as written in the scene (`CCT`, …).
+    pub fn code(self) -> &'static str {
+        match self {
+            CageType::Cct => "CCT",
+            CageType::Ccs => "CCS",
+            CageType::Csm => "CSM",
+            CageType::Ssm => "SSM",
+            CageType::Cst => "CST",
+        }
+    }
+
+    /// Parse a code (case-insensitive).
+    pub fn from_code(s: &str) -> Option<Self> {
+        match s.to_ascii_uppercase().as_str() {
+            "CCT" => Some(CageType::Cct),
+            "CCS" => Some(CageType::Ccs),
+            "CSM" => Some(CageType::Csm),
+            "SSM" => Some(CageType::Ssm),
+            "CST" => Some(CageType::Cst),
+            _ => None,
+        }
+    }
+
+    /// CST → CCT; others unchanged.
+    pub fn canonical(self) -> Self {
+        if self == CageType::Cst {
+            CageType::Cct
+        } else {
+            self
+        }
+    }
+}
+
+/// Kind of object a builder produced.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectKind {
+    /// A parametric cage.
+    Cage(CageType),
+    /// A flat net panel.
+    Panel,
+    /// A single line.
+    Line,
+    /// A mesh imported from gmsh.
+    Gmsh,
+    /// The node of a free buoy.
+    Buoy,
+    /// The frame of a farm grid (frame lines, bridles, pendants, plates, buoys).
+    Frame,
+}
+
+/// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CageCounts {
+    /// Nodes around the circumference NT.
+    pub nt: usize,
+    /// Side segments NN.
+    pub nn: usize,
+    /// Cone segments BN.
+    pub bn: usize,
+    /// Frame extension segments (n_x, n_t or n_b; 0 if not used).
+    pub n_ext: usize,
+    /// Physical ropes of the design (CCT, CCS: the `ropes` key; CSM, SSM: NT, one per column).
+    pub ropes: usize,
+    /// Top radius (circular) or half-width (square) R_t / h [m].
+    pub top_radius: f64,
+    /// Bottom radius R_b (square: h) [m].
+    pub bottom_radius: f64,
+    /// Actual element length around the top ring [m].
+    pub ring_element_length: f64,
+    /// Actual element length along the side meridians [m].
+    pub side_element_length: f64,
+    /// Actual element length along the cone meridians (first cone segment) [m].
+    pub cone_element_length: f64,
+}
+
+/// One object (cage, panel, line, imported mesh) in a mesh.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Object {
+    /// Object name (`cage0`, …).
+    pub name: String,
+    /// What built it.
+    pub kind: ObjectKind,
+    /// Origins of its copies (one per copy) [m].
+    pub origins: Vec<[f64; 3]>,
+    /// Net parameters and mesh-grouping numbers, if the object has a net.
+    pub net: Option<NetGrouping>,
+    /// Cage discretisation numbers (cages only).
+    pub counts: Option<CageCounts>,
+    /// Original gmsh node tags of copy 0, in dense node order (imports only).
+    pub source_node_tags: Vec<u64>,
+}
