@@ -52,20 +52,75 @@ create_exception!(
 
 mod coupling;
 
+/// An attribute set on a raised exception: its name and a text or a number (None if neither).
+type Attribute = (&'static str, Option<String>, Option<f64>);
+
 /// The Python exception for an aqua-sim error, chosen by its variant (not by its message).
+/// An `InputError` carries `file`, `key` and `value` (None when not known); a `SolveError` of
+/// a time step carries `reason` (the kind of failure, as run.json's `step_control.reasons`
+/// names it) and `time` [s], and of a static solve `reason` and `load_factor`.
 pub(crate) fn err(e: SimError) -> PyErr {
     let msg = e.chain();
-    match e {
-        SimError::Input(_) | SimError::Model { .. } => InputError::new_err(msg),
-        SimError::Static { .. }
-        | SimError::StartDynamic(..)
-        | SimError::Dynamic(_)
-        | SimError::NonFinite(_) => SolveError::new_err(msg),
+    let (py_err, attrs): (PyErr, Vec<Attribute>) = match &e {
+        SimError::Input(ie) => (
+            InputError::new_err(msg),
+            vec![
+                (
+                    "file",
+                    ie.file.as_ref().map(|p| p.display().to_string()),
+                    None,
+                ),
+                ("key", ie.key.clone(), None),
+                ("value", ie.value.clone(), None),
+            ],
+        ),
+        SimError::Model { .. } => (
+            InputError::new_err(msg),
+            vec![
+                ("file", None, None),
+                ("key", None, None),
+                ("value", None, None),
+            ],
+        ),
+        SimError::Dynamic(fe) | SimError::Static { source: fe, .. } => {
+            let mut attrs = vec![("reason", None, None), ("time", None, None)];
+            match fe.as_ref() {
+                aqua_fem::FemError::StepFailed(f) => {
+                    attrs = vec![
+                        ("reason", Some(f.reason.kind().to_string()), None),
+                        ("time", None, Some(f.t)),
+                    ];
+                }
+                aqua_fem::FemError::StaticFailed(f) => {
+                    attrs = vec![
+                        ("reason", Some(f.reason.kind().to_string()), None),
+                        ("load_factor", None, Some(f.load_factor)),
+                    ];
+                }
+                _ => {}
+            }
+            (SolveError::new_err(msg), attrs)
+        }
+        SimError::StartDynamic(..) | SimError::NonFinite(_) => (
+            SolveError::new_err(msg),
+            vec![("reason", None, None), ("time", None, None)],
+        ),
         SimError::Io { .. }
         | SimError::Plot { .. }
         | SimError::Output(_)
-        | SimError::Coupling(_) => AquaError::new_err(msg),
-    }
+        | SimError::Coupling(_) => (AquaError::new_err(msg), Vec::new()),
+    };
+    Python::attach(|py| {
+        let v = py_err.value(py);
+        for (name, text, number) in attrs {
+            let _ = match (text, number) {
+                (Some(t), _) => v.setattr(name, t),
+                (None, Some(x)) => v.setattr(name, x),
+                (None, None) => v.setattr(name, py.None()),
+            };
+        }
+    });
+    py_err
 }
 
 /// A scene: the TOML file's contents, type-checked.

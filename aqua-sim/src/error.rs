@@ -30,9 +30,9 @@ pub enum ModelError {
 #[derive(Debug, Error)]
 pub enum SimError {
     /// A mistake in the scene: the message names the file, line, section, key and value, and
-    /// what would be valid.
-    #[error("{0}")]
-    Input(String),
+    /// what would be valid; the fields give them to a program.
+    #[error(transparent)]
+    Input(InputError),
     /// A library rejected a value of the scene; `at` names the file and the place in it.
     #[error("{at}")]
     Model {
@@ -87,10 +87,42 @@ pub enum SimError {
     Coupling(String),
 }
 
+/// A mistake in the input, for a person (its message) and for a program (where and what).
+#[derive(Debug, Clone, PartialEq, Default, Error)]
+#[error("{message}")]
+pub struct InputError {
+    /// The whole message, as `aqua` prints it after "error: ".
+    pub message: String,
+    /// The scene file, when known.
+    pub file: Option<PathBuf>,
+    /// The dotted key at fault (e.g. `analysis.dynamic.theta`), when known.
+    pub key: Option<String>,
+    /// The value given, as written, when known.
+    pub value: Option<String>,
+}
+
 impl SimError {
     /// An input error with a ready message.
     pub fn input(msg: impl Into<String>) -> Self {
-        Self::Input(msg.into())
+        Self::Input(InputError {
+            message: msg.into(),
+            ..InputError::default()
+        })
+    }
+
+    /// An input error about `key` = `value` in `file`, with its message (which names them).
+    pub fn invalid(
+        file: impl Into<PathBuf>,
+        key: impl Into<String>,
+        value: impl ToString,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::Input(InputError {
+            message: message.into(),
+            file: Some(file.into()),
+            key: Some(key.into()),
+            value: Some(value.to_string()),
+        })
     }
 
     /// A library error at a place in the scene.

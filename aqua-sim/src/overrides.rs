@@ -72,7 +72,14 @@ impl FromStr for Override {
             )));
         };
         let path = path.trim();
-        check_path_syntax(path).map_err(|m| SimError::input(format!("--set {s}: {m}")))?;
+        check_path_syntax(path).map_err(|m| {
+            SimError::Input(crate::error::InputError {
+                message: format!("--set {s}: {m}"),
+                key: Some(path.to_string()),
+                value: Some(value.trim().to_string()),
+                file: None,
+            })
+        })?;
         Ok(Override {
             path: path.to_string(),
             value: parse_value(value),

@@ -131,12 +131,14 @@ pub fn prepare(options: PrepareOptions<'_>) -> Result<Prepared> {
         return prepare_built(scene, prescribed);
     }
     let changes = scene.overrides.join(" ");
-    prepare_built(scene, prescribed).map_err(|e| {
-        if e.is_input() {
-            SimError::input(format!("{} (with --set {changes})", e.chain()))
-        } else {
-            e
+    prepare_built(scene, prescribed).map_err(|e| match e {
+        // Where the mistake is stays known; the message says the overrides were applied.
+        SimError::Input(mut ie) => {
+            ie.message = format!("{} (with --set {changes})", ie.message);
+            SimError::Input(ie)
         }
+        e if e.is_input() => SimError::input(format!("{} (with --set {changes})", e.chain())),
+        e => e,
     })
 }
 
@@ -239,10 +241,15 @@ fn alpha(scene: &Scene) -> Result<f64> {
             if (0.0..=1.0 / 3.0).contains(&a) {
                 Ok(a)
             } else {
-                Err(SimError::input(format!(
-                    "{file}: analysis.dynamic.alpha = {a}: valid is 0 <= alpha <= 1/3 (our convention; \
+                Err(SimError::invalid(
+                    &scene.path,
+                    "analysis.dynamic.alpha",
+                    a,
+                    format!(
+                        "{file}: analysis.dynamic.alpha = {a}: valid is 0 <= alpha <= 1/3 (our convention; \
                      the original HHT/Code_Aster ALPHA is -alpha, in [-1/3, 0])"
-                )))
+                    ),
+                ))
             }
         }
         (None, Some(r)) => DynamicSettings::alpha_from_rho_inf(r)
@@ -263,15 +270,25 @@ fn theta(scene: &Scene) -> Result<f64> {
             } else {
                 "an explicit scheme has no theta; remove the key or use scheme = \"midpoint\""
             };
-            Err(SimError::input(format!(
-                "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" ({hint})"
-            )))
+            Err(SimError::invalid(
+                &scene.path,
+                "analysis.dynamic.theta",
+                t,
+                format!(
+                    "{file}: analysis.dynamic.theta = {t}: only with scheme = \"midpoint\" ({hint})"
+                ),
+            ))
         }
         Some(t) if (0.5..=1.0).contains(&t) => Ok(t),
-        Some(t) => Err(SimError::input(format!(
-            "{file}: analysis.dynamic.theta = {t}: valid is 0.5 <= theta <= 1 \
+        Some(t) => Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.theta",
+            t,
+            format!(
+                "{file}: analysis.dynamic.theta = {t}: valid is 0.5 <= theta <= 1 \
              (0.5 conserves the energy; above it each step removes (theta - 1/2)*|v1 - v0|^2_M)"
-        ))),
+            ),
+        )),
     }
 }
 
@@ -283,37 +300,58 @@ fn timing(scene: &Scene) -> Result<(f64, f64, f64)> {
     let d = &scene.analysis.dynamic;
     let file = scene.path.display();
     if !(d.t_end > 0.0 && d.t_end.is_finite()) {
-        return Err(SimError::input(format!(
-            "{file}: analysis.dynamic.t_end = {}: a duration > 0 in s",
-            d.t_end
-        )));
+        return Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.t_end",
+            d.t_end,
+            format!(
+                "{file}: analysis.dynamic.t_end = {}: a duration > 0 in s",
+                d.t_end
+            ),
+        ));
     }
     if d.reuse_factor == 0 {
-        return Err(SimError::input(format!(
-            "{file}: analysis.dynamic.reuse_factor = 0: an integer >= 1 (1 = full Newton)"
-        )));
+        return Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.reuse_factor",
+            0,
+            format!("{file}: analysis.dynamic.reuse_factor = 0: an integer >= 1 (1 = full Newton)"),
+        ));
     }
     let dt = d.dt.unwrap_or(DEFAULT_DT);
     if !(dt > 0.0 && dt <= d.t_end) {
-        return Err(SimError::input(format!(
-            "{file}: analysis.dynamic.dt = {dt}: a time step > 0 s and <= t_end ({} s)",
-            d.t_end
-        )));
+        return Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.dt",
+            dt,
+            format!(
+                "{file}: analysis.dynamic.dt = {dt}: a time step > 0 s and <= t_end ({} s)",
+                d.t_end
+            ),
+        ));
     }
     if d.t_end / dt > MAX_STEPS {
-        return Err(SimError::input(format!(
-            "{file}: analysis.dynamic.t_end = {} s with dt = {dt} s: {:.3e} steps; at most \
-             {MAX_STEPS:e} (times are in seconds)",
+        return Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.t_end",
             d.t_end,
-            d.t_end / dt
-        )));
+            format!(
+                "{file}: analysis.dynamic.t_end = {} s with dt = {dt} s: {:.3e} steps; at most \
+             {MAX_STEPS:e} (times are in seconds)",
+                d.t_end,
+                d.t_end / dt
+            ),
+        ));
     }
     // 200 output steps over the run at most, by default.
     let out = d.output_interval.unwrap_or(dt.max(d.t_end / 200.0));
     if !(out > 0.0) {
-        return Err(SimError::input(format!(
-            "{file}: analysis.dynamic.output_interval = {out}: an interval > 0 in s"
-        )));
+        return Err(SimError::invalid(
+            &scene.path,
+            "analysis.dynamic.output_interval",
+            out,
+            format!("{file}: analysis.dynamic.output_interval = {out}: an interval > 0 in s"),
+        ));
     }
     Ok((dt, out.max(dt), d.t_end))
 }
@@ -330,10 +368,15 @@ fn paraview_every(scene: &Scene, out: f64) -> Result<usize> {
     if p.is_finite() && k >= 1.0 && (ratio - k).abs() <= 1e-6 * k && k <= MAX_STEPS {
         return Ok(k as usize);
     }
-    Err(SimError::input(format!(
-        "{}: analysis.dynamic.paraview_interval = {p}: a whole multiple (1, 2, 3, …) of the \
+    Err(SimError::invalid(
+        &scene.path,
+        "analysis.dynamic.paraview_interval",
+        p,
+        format!(
+            "{}: analysis.dynamic.paraview_interval = {p}: a whole multiple (1, 2, 3, …) of the \
          output interval, {out} s (`output_interval`; every summary.csv row is an output step \
          and every k-th of them also a ParaView step)",
-        scene.path.display()
-    )))
+            scene.path.display()
+        ),
+    ))
 }

@@ -247,3 +247,18 @@ def test_a_pipe_modelled_as_a_rod_gives_mesh_positions_and_its_stress(tmp_path):
     res = aqua.Scene.load(str(p)).run(out=str(tmp_path / "py"))
     assert res.positions.shape == (1, 11, 3)
     assert res.summary[col][0] == pytest.approx(cli[col][0], rel=1e-12)
+
+
+def test_errors_say_where_and_why_to_a_program(tmp_path):
+    # An input error names the file, key and value; a failed step its kind and time, so a
+    # script or a sweep can act on the cause without reading the message.
+    text = CHAIN.read_text().replace("t_end = 60.0", "t_end = 60.0\ntheta = 0.3")
+    p = tmp_path / "theta.toml"
+    p.write_text(text.replace('kind = "static+dynamic"', 'kind = "static+dynamic"'))
+    with pytest.raises(aqua.InputError) as e:
+        aqua.Scene.load(str(p)).run()
+    assert e.value.key == "analysis.dynamic.theta"
+    assert float(e.value.value) == 0.3 and e.value.file == str(p)
+    with pytest.raises(aqua.InputError) as e:
+        aqua.Scene.from_dict({"sea": {"depth": 50, "depht": 3}})
+    assert hasattr(e.value, "key")

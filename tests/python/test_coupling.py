@@ -99,8 +99,10 @@ def test_save_restore_and_a_failed_step_retried(tmp_path):
     # 30 m in one step stretches a chain past the strain guard: the step fails, the coupling
     # stays where it was, and the smaller step goes on.
     t = sim.time
-    with pytest.raises(aqua.SolveError):
+    with pytest.raises(aqua.SolveError) as e:
         sim.step(t, dt, {"l1/fairlead": [30.0, 0.0, -5.0]})
+    assert e.value.reason == "strain … beyond max_strain …"
+    assert t <= e.value.time < t + dt
     assert sim.time == t
     sim.step(t, dt / 2, bodies={"barge": body_target(t + dt / 2)})
     assert sim.time == pytest.approx(t + dt / 2)

@@ -31,10 +31,15 @@ pub(super) fn attach_buoys(
             None => format!("{name}/{BUOY_GROUP}"),
         };
         let nodes = resolve_ref(mesh, &reference).ok_or_else(|| {
-            SimError::input(format!(
-                "{at}: node = \"{reference}\" names no node; {}",
-                ref_hint(mesh, &reference)
-            ))
+            SimError::Input(crate::error::InputError {
+                message: format!(
+                    "{at}: node = \"{reference}\" names no node; {}",
+                    ref_hint(mesh, &reference)
+                ),
+                file: Some(scene.path.clone()),
+                key: Some(format!("buoy.{i}.node")),
+                value: Some(reference.clone()),
+            })
         })?;
         for &n in &nodes {
             b.add_point_body(PointBody {
