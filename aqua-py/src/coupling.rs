@@ -140,14 +140,24 @@ impl Coupling {
 #[pymethods]
 impl Coupling {
     /// Builds the scene (a `Scene` or a path) with its `[[prescribed]]` nodes driven from
-    /// Python.
+    /// Python; with `out`, writes the files of `aqua run` but `run.json` there (a
+    /// `summary.csv` row per step call, the ParaView series, `extremes.csv` at `close`).
     #[new]
-    fn new(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
+    #[pyo3(signature = (scene, out = None))]
+    fn new(py: Python<'_>, scene: &Bound<'_, PyAny>, out: Option<PathBuf>) -> PyResult<Self> {
         let scene = match scene.cast::<Scene>() {
             Ok(s) => s.get().inner.clone(),
             Err(_) => aqua_sim::read_scene(&scene.extract::<PathBuf>()?).map_err(err)?,
         };
-        let c = py.detach(|| aqua_sim::Coupling::new(scene)).map_err(err)?;
+        let c = py
+            .detach(|| {
+                let mut c = aqua_sim::Coupling::new(scene)?;
+                if let Some(dir) = &out {
+                    c.write_to(dir)?;
+                }
+                Ok(c)
+            })
+            .map_err(err)?;
         let names = c.points().iter().map(|p| p.name.clone()).collect();
         Ok(Self {
             inner: Mutex::new(Some(c)),
@@ -269,16 +279,16 @@ impl Coupling {
         py.detach(|| self.with(|c| c.restore(&state.inner)))
     }
 
-    /// Stops the solver; later calls raise.
+    /// Writes the remaining files (with `out`) and stops the solver; later calls raise.
     fn close(&self) -> PyResult<()> {
         let mut guard = self
             .inner
             .lock()
             .map_err(|_| AquaError::new_err("coupling: a previous call panicked"))?;
-        if let Some(mut c) = guard.take() {
-            c.close();
+        match guard.take() {
+            Some(mut c) => c.close().map_err(err),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     fn __enter__(slf: Py<Self>) -> Py<Self> {

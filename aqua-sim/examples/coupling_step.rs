@@ -41,6 +41,6 @@ fn main() -> Result<(), SimError> {
         1e3 * per_step,
         f[0][0]
     );
-    c.close();
+    c.close()?;
     Ok(())
 }

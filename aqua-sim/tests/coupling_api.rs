@@ -266,3 +266,82 @@ fn restore_repeats_the_steps_after_save_bit_for_bit() {
         again.1[top]
     );
 }
+
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let head = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (head, rows)
+}
+
+#[test]
+fn a_coupled_run_writes_its_rows_series_and_extremes_without_the_failed_call() {
+    let dir = std::env::temp_dir().join(format!("aqua-coupled-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let dt = 0.1;
+    let mut c = Coupling::new(scene("static+dynamic", "dt = 0.1\nmax_strain = 0.05")).unwrap();
+    let b = c.add_body("barge", &POINTS, [0.0; 3]).unwrap();
+    c.write_to(&dir).unwrap();
+    let f0 = c.init().unwrap();
+    let i = c.point("l1/fairlead").unwrap();
+    let mut forces = vec![norm(f0[i][0])];
+    let mut times = vec![0.0];
+    for k in 0..20 {
+        if k == 10 {
+            // A call that fails and is put back: no row, no extreme.
+            let rest = c.points()[i].rest[0];
+            let far = Target {
+                position: vec![[rest[0] + 30.0, rest[1], rest[2]]],
+                velocity: None,
+                acceleration: None,
+            };
+            assert!(c.step(c.time(), dt, &[(i, far)], &[]).is_err());
+        }
+        let (p, v) = pose((k + 1) as f64 * dt);
+        let target = BodyTarget {
+            pose: p,
+            velocity: Some(body_velocity(p, v)),
+            acceleration: None,
+        };
+        let f = c.step(k as f64 * dt, dt, &[], &[(b, target)]).unwrap();
+        forces.push(norm(f[i][0]));
+        times.push(c.time());
+    }
+    c.close().unwrap();
+    // A row per call after the equilibrium's, holding the forces the calls returned.
+    let (head, rows) = read_csv(&dir.join("summary.csv"));
+    assert_eq!(rows.len(), 21);
+    let col = |name: &str| head.iter().position(|h| h == name).unwrap();
+    let (t, r) = (col("t"), col("l1_fairlead_reaction"));
+    for (k, row) in rows.iter().enumerate() {
+        let (tk, fk): (f64, f64) = (row[t].parse().unwrap(), row[r].parse().unwrap());
+        assert!((tk - times[k]).abs() < 1e-12, "{tk} {}", times[k]);
+        assert!(
+            (fk - forces[k]).abs() <= 1e-12 * forces[k],
+            "row {k}: {fk} {}",
+            forces[k]
+        );
+    }
+    // A ParaView step per row, and the extremes over every accepted step bound the rows'.
+    let pvd = std::fs::read_to_string(dir.join("coupled-body.pvd"))
+        .or_else(|_| {
+            let p = std::fs::read_dir(&dir)
+                .unwrap()
+                .flatten()
+                .find(|e| e.path().extension().is_some_and(|x| x == "pvd"))
+                .unwrap()
+                .path();
+            std::fs::read_to_string(p)
+        })
+        .unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 21);
+    let (_, ext) = read_csv(&dir.join("extremes.csv"));
+    let line = ext.iter().find(|e| e[0] == "l1_fairlead_reaction").unwrap();
+    let max: f64 = line[1].parse().unwrap();
+    let largest = forces[1..].iter().cloned().fold(0.0, f64::max);
+    assert!(max >= largest && max < 1.5 * largest, "{max} {largest}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

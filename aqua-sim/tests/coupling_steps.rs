@@ -116,7 +116,7 @@ fn coupled_forces(dt: f64, n: usize) -> Vec<f64> {
         let f = f[0][0];
         out.push((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt());
     }
-    c.close();
+    c.close().unwrap();
     out
 }
 

@@ -56,7 +56,8 @@ def test_a_coupled_body_gives_the_forces_of_the_same_motion_run_by_the_cli(tmp_p
     cli = read_summary(out)
     assert np.all(cli["dt"][1:] == pytest.approx(dt, rel=1e-9))
 
-    sim = aqua.Coupling(str(spread(tmp_path, "motion = \"coupled\"", dt, t_end)))
+    sim = aqua.Coupling(str(spread(tmp_path, "motion = \"coupled\"", dt, t_end)),
+                        out=str(tmp_path / "coupled"))
     sim.add_body("barge", POINTS, origin=[0.0, 0.0, -5.0])
     assert sim.bodies == ["barge"]
     f = sim.init()
@@ -69,8 +70,14 @@ def test_a_coupled_body_gives_the_forces_of_the_same_motion_run_by_the_cli(tmp_p
         # changes, the moment is Σ r × f about the moved reference point).
         np.testing.assert_allclose(f["barge"][:3], sum(f[p][0] for p in POINTS), rtol=1e-12)
     sim.close()
+    coupled = read_summary(tmp_path / "coupled")
     for n, p in enumerate(POINTS, start=1):
         np.testing.assert_allclose(history[p], cli[f"l{n}_fairlead_reaction"], rtol=1e-9)
+        # The coupled run's own summary.csv holds the same history as aqua run's.
+        np.testing.assert_allclose(coupled[f"l{n}_fairlead_reaction"],
+                                   cli[f"l{n}_fairlead_reaction"], rtol=1e-9)
+    assert (tmp_path / "coupled" / "extremes.csv").exists()
+    assert len(list((tmp_path / "coupled").glob("*.pvd"))) == 1
 
 
 def test_save_restore_and_a_failed_step_retried(tmp_path):

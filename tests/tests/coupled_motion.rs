@@ -38,7 +38,7 @@ fn a_coupled_group_needs_no_motion_keys_and_a_coupling_drives_it() {
     let f1 = sim.step(0.0, 0.1, &[(0, target)], &[]).unwrap();
     let norm = |f: &[f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
     assert!(norm(&f1[0][0]) > norm(&f0[0][0]), "{f0:?} -> {f1:?}");
-    sim.close();
+    sim.close().unwrap();
 
     // `aqua check` builds it (the nodes held in place); a run refuses it and says why.
     let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(

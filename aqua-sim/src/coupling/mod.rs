@@ -27,6 +27,7 @@
 //! borrow it), so a `Coupling` can be kept by a caller with no lifetime, as a Python object.
 
 mod body;
+mod output;
 mod worker;
 
 pub use body::{BodyTarget, CoupledBody, rotation};
@@ -529,17 +530,40 @@ impl Coupling {
         Ok(())
     }
 
-    /// Stops the solver thread (also done on drop).
-    pub fn close(&mut self) {
+    /// Writes the run's files into `dir` (created if missing) from `init` on: `summary.csv`
+    /// with a row at the end of every call, the ParaView series, `extremes.csv` over every
+    /// step the solver accepted (see `output.rs`). Call before `init`.
+    pub fn write_to(&mut self, dir: &std::path::Path) -> Result<()> {
+        if self.initialised {
+            return Err(SimError::Coupling(
+                "write_to must come before init (the files start with its state)".into(),
+            ));
+        }
+        match self.ask(Request::Output(dir.to_path_buf()))? {
+            Reply::Done(r) => r,
+            _ => Err(SimError::Coupling("unexpected reply".into())),
+        }
+    }
+
+    /// Writes what is still queued and `extremes.csv`, then stops the solver thread (also
+    /// done on drop, where a write error is lost: call `close` to see it). Later calls fail.
+    pub fn close(&mut self) -> Result<()> {
+        let finished = match self.tx.is_some().then(|| self.ask(Request::Finish)) {
+            Some(Ok(Reply::Done(r))) => r,
+            Some(Ok(_)) => Err(SimError::Coupling("unexpected reply".into())),
+            Some(Err(e)) => Err(e),
+            None => Ok(()),
+        };
         self.tx = None;
         if let Some(w) = self.worker.take() {
             let _ = w.join();
         }
+        finished
     }
 }
 
 impl Drop for Coupling {
     fn drop(&mut self) {
-        self.close();
+        let _ = self.close();
     }
 }

@@ -2,6 +2,7 @@
 //! model) and answers the caller's requests in order until the channel closes.
 
 use super::Forces;
+use super::output::CoupledOutput;
 use crate::error::{Result, SimError};
 use crate::plan::{Integrator, Prepared};
 use crate::run::water_loads;
@@ -9,6 +10,7 @@ use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium};
 use aqua_env::Phase;
 use aqua_fem::{DynamicSettings, Outputs, Snapshot, State};
+use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, Sender};
 
 /// The end time given to an integrator when it starts: each call then sets its own end.
@@ -25,6 +27,10 @@ pub(super) enum Request {
     Tensions,
     Save,
     Restore(Option<Box<Snapshot>>),
+    /// Write the run's files into this directory.
+    Output(PathBuf),
+    /// Write what is queued and the extremes.
+    Finish,
 }
 
 pub(super) enum Reply {
@@ -33,6 +39,7 @@ pub(super) enum Reply {
     Tensions(Vec<f64>),
     Saved(Result<Option<Box<Snapshot>>>),
     Restored(Result<()>),
+    Done(Result<()>),
 }
 
 /// The forces on the points: −R at their nodes.
@@ -78,13 +85,16 @@ struct Worker<'p> {
     solver: Option<Box<dyn Stepper + 'p>>,
     /// A failed call of an integrator that cannot go back (explicit) ends the coupling.
     broken: Option<String>,
+    /// The run's files, when asked for.
+    output: Option<CoupledOutput>,
 }
 
 impl<'p> Worker<'p> {
     fn init(&mut self) -> Result<Forces> {
         let prep = self.prep;
         if prep.plan.kind == AnalysisKind::Dynamic {
-            // Dynamics from the as-built state at rest: no forces known before a step.
+            // Dynamics from the as-built state at rest: no forces known before a step (the
+            // files' first row is the first call's end).
             return Ok(prep
                 .built
                 .external
@@ -101,6 +111,9 @@ impl<'p> Worker<'p> {
             &mut go_on,
         )?;
         let f = point_forces(prep, &s.outputs);
+        if let Some(o) = self.output.as_mut() {
+            o.start(prep, &self.loads, &s.state, &s.outputs, s.report.iterations)?;
+        }
         self.initial = Some((s.state, s.outputs));
         Ok(f)
     }
@@ -127,14 +140,26 @@ impl<'p> Worker<'p> {
             return Err(SimError::Coupling("no solver".into()));
         };
         let start = s.checkpoint();
+        let t0 = s.state().t;
+        let output = &mut self.output;
+        if let Some(o) = output.as_mut() {
+            o.begin_call();
+        }
+        let mut iterations = 0;
         let mut advance = || -> aqua_fem::Result<()> {
             s.extend_to(t1)?;
             while !s.is_finished() {
-                s.step(&mut self.loads)?;
+                iterations = s.step(&mut self.loads)?.iterations;
+                if let Some(o) = output.as_mut() {
+                    o.observe(prep, &self.loads, s.state(), s.outputs());
+                }
             }
             Ok(())
         };
         if let Err(e) = advance() {
+            if let Some(o) = self.output.as_mut() {
+                o.revert_call();
+            }
             match &start {
                 Some(c) => s.restore(c).map_err(|e| SimError::Dynamic(Box::new(e)))?,
                 None => {
@@ -152,7 +177,26 @@ impl<'p> Worker<'p> {
                 "the solver reached t = {t} s instead of the step's end t = {t1} s"
             )));
         }
+        if let Some(o) = self.output.as_mut() {
+            o.row(
+                prep,
+                &self.loads,
+                s.state(),
+                s.outputs(),
+                iterations,
+                t1 - t0,
+            )?;
+        }
         Ok(point_forces(prep, s.outputs()))
+    }
+
+    fn open(&mut self, dir: PathBuf) -> Result<()> {
+        self.output = Some(CoupledOutput::create(self.prep, &dir)?);
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<()> {
+        self.output.as_mut().map_or(Ok(()), |o| o.finish())
     }
 
     /// The mesh's nodes (a rod's twist carriers follow them in the model).
@@ -223,6 +267,7 @@ pub(super) fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
         initial: None,
         solver: None,
         broken: None,
+        output: None,
     };
     while let Ok(req) = rx.recv() {
         let reply = match req {
@@ -232,6 +277,8 @@ pub(super) fn worker(prep: Prepared, rx: Receiver<Request>, tx: Sender<Reply>) {
             Request::Tensions => Reply::Tensions(w.tensions()),
             Request::Save => Reply::Saved(w.save()),
             Request::Restore(s) => Reply::Restored(w.restore(s)),
+            Request::Output(dir) => Reply::Done(w.open(dir)),
+            Request::Finish => Reply::Done(w.finish()),
         };
         if tx.send(reply).is_err() {
             break;
