@@ -307,7 +307,7 @@ fn the_seabed_defaults_have_one_definition() {
     let dir = scratch("defaults-seabed");
     for (name, sea) in [("none", ""), ("empty", "[sea.seabed]\n")] {
         let prep = prepare_text(&dir, name, &cage_scene(sea, ""));
-        assert_eq!(prep.scene.sea.seabed, d, "{name}");
+        assert_eq!(prep.scene.seabed, d, "{name}");
         assert_eq!(
             prep.built.model.environment().seabed,
             Some(Seabed::new(h)),

@@ -9,6 +9,7 @@ use super::schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, MeshSpec, PanelSpec, PointSpec,
     PrescribedSpec, Scene, SceneWake,
 };
+use super::sea::SeaSection;
 use super::slots::SLOT_KEYS;
 use crate::buoy::BuoySpec;
 use aqua_env::SeaSpec;
@@ -74,8 +75,17 @@ impl Keys for SeaSpec {
                 Key::Table("water", WaterSpec::keys()),
                 Key::Table("current", CurrentSpec::keys()),
                 Key::Table("waves", WavesSpec::keys()),
-                Key::Table("seabed", SeabedSettings::keys()),
             ],
+        )
+    }
+}
+
+/// `[sea]`: the sea's keys and `[sea.seabed]` (crate::scene::sea).
+impl Keys for SeaSection {
+    fn keys() -> Vec<Key> {
+        with(
+            SeaSpec::keys(),
+            vec![Key::Table("seabed", SeabedSettings::keys())],
         )
     }
 }
@@ -541,7 +551,7 @@ impl Keys for Scene {
     fn keys() -> Vec<Key> {
         vec![
             Key::Value("name"),
-            Key::Table("sea", SeaSpec::keys()),
+            Key::Table("sea", SeaSection::keys()),
             Key::Array("cage", CageSpec::keys()),
             Key::Array("panel", PanelSpec::keys()),
             Key::Array("line", LineSpec::keys()),
@@ -792,6 +802,7 @@ mod tests {
             assert_eq!(names::<T>(), fields, "{}", std::any::type_name::<T>());
         }
         same::<SeaSpec>();
+        same::<SeaSection>();
         same::<WaterSpec>();
         same::<CurrentSpec>();
         same::<WavesSpec>();

@@ -8,6 +8,7 @@ use super::schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, Located, MeshSpec, PanelSpec, Scene,
     SceneWake,
 };
+use super::sea::SeaSection;
 use crate::buoy::BuoySpec;
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
@@ -25,12 +26,13 @@ pub fn read_text(path: &Path) -> Result<String> {
 }
 
 /// Reads the `[sea]` table of a scene file (a file holding only sea keys at top level is
-/// accepted too, so a bare sea description can be shared between scenes).
+/// accepted too, so a bare sea description can be shared between scenes); its `[sea.seabed]`
+/// is checked and left out.
 pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     /// A scene seen only for its `[sea]` table; the other sections are checked elsewhere.
     #[derive(serde::Deserialize)]
     struct SeaOnly {
-        sea: SeaSpec,
+        sea: SeaSection,
         #[serde(flatten)]
         _rest: toml::Table,
     }
@@ -38,11 +40,15 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     let table: toml::Table =
         toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
     let err = |e: toml::de::Error| SimError::input(format!("{}: {e}", path.display()));
-    if table.contains_key("sea") {
-        toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)
+    let section = if table.contains_key("sea") {
+        toml::from_str::<SeaOnly>(&text)
+            .map(|s| s.sea)
+            .map_err(err)?
     } else {
-        toml::from_str::<SeaSpec>(&text).map_err(err)
-    }
+        toml::from_str::<SeaSection>(&text).map_err(err)?
+    };
+    section.check_seabed(path)?;
+    Ok(section.sea)
 }
 
 /// The raw file: typed where the schema is ours, tables with spans where keys are split
@@ -53,7 +59,7 @@ struct RawScene {
     #[serde(default)]
     name: Option<String>,
     #[serde(default)]
-    sea: SeaSpec,
+    sea: SeaSection,
     #[serde(default)]
     cage: Vec<Spanned<Table>>,
     #[serde(default)]
@@ -378,10 +384,12 @@ impl Ctx<'_> {
                 path.display()
             )));
         }
+        raw.sea.check_seabed(path)?;
         Ok(Scene {
             name,
             path: path.to_path_buf(),
-            sea: raw.sea,
+            sea: raw.sea.sea,
+            seabed: raw.sea.seabed,
             cage: ctx.each(&raw.cage, |i, line, mut t| {
                 let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
                 let params = ctx.typed("cage", i, line, "", t)?;

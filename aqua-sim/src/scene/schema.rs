@@ -7,6 +7,7 @@ use super::hydro::{LineHydro, NetHydro};
 use super::slots::SlotSpec;
 use crate::buoy::BuoySpec;
 use aqua_env::SeaSpec;
+use aqua_fem::SeabedSettings;
 use aqua_mesh::{CageParams, FarmParams, GmshParams, LineParams, PanelParams, SectionOverride};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -215,8 +216,11 @@ pub struct Scene {
     /// The file it came from.
     #[serde(skip)]
     pub path: PathBuf,
-    /// The sea.
+    /// The sea: every `[sea]` key but `seabed`.
     pub sea: SeaSpec,
+    /// `[sea.seabed]`: the structure's contact with the bed (split off `[sea]` by the reader,
+    /// crate::scene::sea).
+    pub seabed: SeabedSettings,
     /// Cages.
     pub cage: Vec<Located<CageSpec>>,
     /// Flat panels.
