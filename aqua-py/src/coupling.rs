@@ -145,7 +145,11 @@ impl Coupling {
     fn new(py: Python<'_>, scene: &Bound<'_, PyAny>) -> PyResult<Self> {
         let scene = match scene.cast::<Scene>() {
             Ok(s) => s.get().inner.clone(),
-            Err(_) => aqua_sim::read_scene(&scene.extract::<PathBuf>()?).map_err(err)?,
+            Err(_) => aqua_sim::read_scene(
+                aqua_sim::SceneInput::File(&scene.extract::<PathBuf>()?),
+                &[],
+            )
+            .map_err(err)?,
         };
         let c = py.detach(|| aqua_sim::Coupling::new(scene)).map_err(err)?;
         let names = c.points().iter().map(|p| p.name.clone()).collect();

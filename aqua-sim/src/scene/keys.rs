@@ -595,7 +595,7 @@ pub fn scene_keys() -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_scene;
+    use crate::scene::{SceneInput, read_scene};
     use serde::de::DeserializeOwned;
     use std::path::Path;
     use toml::{Table, Value};
@@ -644,16 +644,22 @@ mod tests {
             value = Value::Table(t);
         }
         let text = toml::to_string(&value).ok()?;
-        parse_scene(&text, Path::new("probe.toml"))
-            .err()
-            .map(|e| e.to_string())
+        read_scene(
+            SceneInput::Text {
+                text: &text,
+                path: Path::new("probe.toml"),
+            },
+            &[],
+        )
+        .err()
+        .map(|e| e.to_string())
     }
 
     /// Every key a scene file accepts, as dotted paths (`sea.current.velocity`,
     /// `cage.net.solidity`, `cage.groups.<name>.diameter`), derived from the schema types
     /// themselves: each table is given an unknown key and the parser's own "expected one of"
     /// list is read back, recursing into every key that is a table, an array of tables or a map of
-    /// tables. The `net.*` and Morison keys that [`parse_scene`] splits off before the mesh types
+    /// tables. The `net.*` and Morison keys that [`read_scene`] splits off before the mesh types
     /// see them come from their own types ([`NetHydro`], [`LineHydro`]), as do `[[group]]`'s
     /// section keys ([`SectionOverride`]).
     fn probed_scene_keys() -> Vec<String> {

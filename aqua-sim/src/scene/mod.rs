@@ -38,7 +38,7 @@ mod slots;
 pub use analysis::{AnalysisKind, AnalysisSpec, DEFAULT_DT, DEFAULT_T_END, DynamicSpec, Scheme};
 pub use hydro::{LineHydro, NetDrag, NetHydro};
 pub use keys::{Key, Keys, scene_keys};
-pub use read::{parse_scene, parse_scene_with, read_scene, read_scene_with, read_sea, read_text};
+pub use read::{SceneInput, read_scene, read_sea, read_text};
 pub use schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, Located, MeshSpec, MotionKind, PanelSpec,
     PointSpec, PrescribedSpec, Scene, SceneWake,

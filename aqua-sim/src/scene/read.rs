@@ -282,26 +282,34 @@ impl Ctx<'_> {
     }
 }
 
-/// Reads and type-checks a scene file.
-pub fn read_scene(path: &Path) -> Result<Scene> {
-    parse_scene(&read_text(path)?, path)
+/// Where [`read_scene`] reads a scene from.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneInput<'a> {
+    /// A scene file: its text, and its name in messages, the default scene name and the folder
+    /// that relative gmsh files are found in.
+    File(&'a Path),
+    /// The text of a scene; `path` names it as a file would (it need not exist).
+    Text {
+        /// The TOML text.
+        text: &'a str,
+        /// The file it stands for.
+        path: &'a Path,
+    },
 }
 
-/// Type-checks the text of a scene; `path` names it in messages, gives the default scene
-/// name and the folder that relative gmsh files are found in.
-pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
-    parse_scene_with(text, path, &[])
+/// Reads and type-checks a scene, changed by `overrides` (crate::overrides) applied in order
+/// (none: the scene as it is). The scene itself must be valid; each change is then checked
+/// exactly like the file, and the first one that makes the scene invalid is named in the
+/// error. Messages keep the file's line numbers.
+pub fn read_scene(input: SceneInput<'_>, overrides: &[Override]) -> Result<Scene> {
+    match input {
+        SceneInput::File(path) => parse_scene(&read_text(path)?, path, overrides),
+        SceneInput::Text { text, path } => parse_scene(text, path, overrides),
+    }
 }
 
-/// Reads and type-checks a scene file changed by `overrides` (crate::overrides).
-pub fn read_scene_with(path: &Path, overrides: &[Override]) -> Result<Scene> {
-    parse_scene_with(&read_text(path)?, path, overrides)
-}
-
-/// [`parse_scene`] of the text changed by `overrides`, applied in order. The file itself must
-/// be valid; each change is then checked exactly like the file, and the first one that makes
-/// the scene invalid is named in the error. Messages keep the file's line numbers.
-pub fn parse_scene_with(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
+/// [`read_scene`] of a text.
+fn parse_scene(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
     let raw: RawScene = toml::from_str(text)
         .map_err(|e| sweep_file_error(path, text).unwrap_or_else(|| file_error(path, e)))?;
     let ctx = Ctx { path, text };
@@ -446,7 +454,7 @@ mod tests {
             "[sea]\ndepth = 60\n\n[[cage]]\ntype = \"SSM\"\nnet.solidity = 0.2\nnet.screen_model = \"S2\"\n\
              net.wake = { model = \"cheng\" }\n",
         );
-        let s = read_scene(&p).unwrap();
+        let s = read_scene(SceneInput::File(&p), &[]).unwrap();
         assert_eq!(s.name, "a");
         assert_eq!(s.cage[0].line, 4);
         assert_eq!(s.cage[0].value.params.net.solidity, Some(0.2));
@@ -459,7 +467,9 @@ mod tests {
             "b.toml",
             "[sea]\ndepth = 60\n\n\n[[cage]]\ntype = \"SSM\"\ncircumferense = 100\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("b.toml") && e.contains("line 5") && e.contains("[[cage]] #1"),
             "{e}"
@@ -469,10 +479,14 @@ mod tests {
             "c.toml",
             "[[cage]]\ntype = \"SSM\"\nnet.screen_model = \"S9\"\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("S9") && e.contains("S1"), "{e}");
         let p = write("d.toml", "[analysis]\nkind = \"quasi\"\n");
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("line 2") && e.contains("quasi") && e.contains("static+dynamic"),
             "{e}"
@@ -481,7 +495,9 @@ mod tests {
             "e.toml",
             "[[line]]\nanchor = [0,0,-50]\nlength = 10\nmorison = \"M9\"\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("[[line]] #1") && e.contains("M9"), "{e}");
     }
 }
