@@ -146,7 +146,7 @@ fn farm_buoys_and_buoy_cylinders_share_the_added_mass_default() {
     let farm = example("farm.toml").replace("added_mass_coefficient = 0.5\n", "");
     assert!(!farm.contains("added_mass_coefficient"));
     let prep = prepare_text(&dir, "farm", &farm);
-    let node = prep.built.farms[0].buoys[0].node;
+    let node = prep.built.farms[0].buoys[0];
     let ca_farm = prep
         .built
         .elements

@@ -11,13 +11,13 @@ use super::schema::{
 };
 use super::sea::SeaSection;
 use super::slots::SLOT_KEYS;
-use crate::buoy::BuoySpec;
+use crate::buoy::{BuoySpec, FARM_BUOY_KEYS};
 use aqua_env::SeaSpec;
 use aqua_env::config::{CurrentSpec, SpectrumSpec, WaterSpec, WavesSpec};
 use aqua_fem::{SeabedSettings, StaticSettings};
 use aqua_mesh::{
-    BuoyParams, CageParams, CollarParams, FarmParams, GmshParams, LineParams, LineSegment,
-    NetParams, PanelParams, SectionOverride,
+    CageParams, CollarParams, FarmParams, GmshParams, LineParams, LineSegment, NetParams,
+    PanelParams, SectionOverride,
 };
 
 /// One key of a scene table.
@@ -334,18 +334,6 @@ impl Keys for GmshParams {
     }
 }
 
-impl Keys for BuoyParams {
-    fn keys() -> Vec<Key> {
-        values(&[
-            "volume",
-            "height",
-            "mass",
-            "drag_area",
-            "added_mass_coefficient",
-        ])
-    }
-}
-
 impl Keys for FarmParams {
     fn keys() -> Vec<Key> {
         with(
@@ -368,7 +356,6 @@ impl Keys for FarmParams {
                 Key::Table("bridle", SectionOverride::keys()),
                 Key::Table("anchor", SectionOverride::keys()),
                 Key::Table("chain", SectionOverride::keys()),
-                Key::Table("buoy", BuoyParams::keys()),
             ],
         )
     }
@@ -411,13 +398,15 @@ impl Keys for LineSpec {
 }
 
 impl Keys for FarmSpec {
-    /// The grid keys, `[farm.cage]` as a `[[cage]]`, and `[[farm.slot]]` as a `[[cage]]` with
-    /// its cell (crate::scene::slots).
+    /// The grid keys, `[farm.cage]` as a `[[cage]]`, `[farm.buoy]` as a `[[buoy]]` of
+    /// [`FARM_BUOY_KEYS`], and `[[farm.slot]]` as a `[[cage]]` with its cell
+    /// (crate::scene::slots).
     fn keys() -> Vec<Key> {
         with(
             FarmParams::keys(),
             vec![
                 Key::Table("cage", CageSpec::keys()),
+                Key::Table("buoy", values(FARM_BUOY_KEYS)),
                 Key::Array("slot", with(CageSpec::keys(), values(SLOT_KEYS))),
             ],
         )
@@ -743,6 +732,20 @@ mod tests {
                 .into_iter()
                 .map(|k| format!("farm.slot.{k}")),
         );
+        // `[farm.buoy]` is typed apart from the farm's own keys, as a `[[buoy]]` of fewer keys:
+        // its message in a farm that is otherwise whole.
+        let farm = format!(
+            "[[farm]]\nrows = 1\ncolumns = 1\nspacing = 40\ngrid_depth = 5\n\
+             anchor_length = 100\n[farm.cage]\ntype = \"CSM\"\n[farm.buoy]\n{PROBE} = 1\n"
+        );
+        let text = Value::Table(toml::from_str(&farm).expect("probe farm"));
+        let e = probe_scene(&[], text).expect("an unknown [farm.buoy] key is refused");
+        out.extend(
+            probed_fields(&e)
+                .expect("[farm.buoy] lists its keys")
+                .into_iter()
+                .map(|k| format!("farm.buoy.{k}")),
+        );
         // Keys split off before the mesh types see them.
         for section in ["cage", "panel", "mesh", "farm.cage", "farm.slot"] {
             out.extend(
@@ -822,7 +825,6 @@ mod tests {
         same::<LineSegment>();
         same::<GmshParams>();
         same::<FarmParams>();
-        same::<BuoyParams>();
         same::<NetHydro>();
         same::<LineHydro>();
         same::<PointSpec>();

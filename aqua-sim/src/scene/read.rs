@@ -9,7 +9,7 @@ use super::schema::{
     SceneWake,
 };
 use super::sea::SeaSection;
-use crate::buoy::BuoySpec;
+use crate::buoy::{BuoyShape, BuoySpec, FARM_BUOY_KEYS};
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
 use aqua_env::SeaSpec;
@@ -169,16 +169,19 @@ impl Ctx<'_> {
     }
 
     /// A `[[farm]]`: its grid keys, its `[farm.cage]` (typed first, so that a mistake in
-    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s, and its
-    /// `[[farm.slot]]`s (crate::scene::slots).
+    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s, its
+    /// `[farm.buoy]` (a [`BuoySpec`] of [`FARM_BUOY_KEYS`]) and its `[[farm.slot]]`s
+    /// (crate::scene::slots).
     fn farm(&self, i: usize, line: usize, mut t: Table) -> Result<FarmSpec> {
         let slots = t.remove("slot");
+        let buoy = t.remove("buoy");
         match t.remove("cage") {
             Some(Value::Table(mut c)) => {
                 let raw = c.clone();
                 let net_hydro = self.net_hydro("farm", i, line, &mut c)?;
                 let cage = self.typed("farm", i, line, "cage", c)?;
                 let params: FarmParams = self.typed("farm", i, line, "", t)?;
+                let buoy = buoy.map(|b| self.farm_buoy(i, line, b)).transpose()?;
                 params
                     .check_cage("cage", &cage)
                     .map_err(|e| self.err("farm", i, line, e))?;
@@ -189,6 +192,7 @@ impl Ctx<'_> {
                         params: cage,
                         net_hydro,
                     },
+                    buoy,
                     slot,
                 })
             }
@@ -202,6 +206,7 @@ impl Ctx<'_> {
             )),
             None => {
                 let _: FarmParams = self.typed("farm", i, line, "", t)?;
+                buoy.map(|b| self.farm_buoy(i, line, b)).transpose()?;
                 Err(self.err(
                     "farm",
                     i,
@@ -211,6 +216,29 @@ impl Ctx<'_> {
                 ))
             }
         }
+    }
+
+    /// A `[farm.buoy]`: only [`FARM_BUOY_KEYS`], `volume` required, typed as a [`BuoySpec`]
+    /// of shape `cylinder` (the farm's other defaults are [`BuoySpec::resolve_farm`]'s).
+    fn farm_buoy(&self, i: usize, line: usize, b: Value) -> Result<BuoySpec> {
+        let in_buoy = |msg: &str| self.err("farm", i, line, format!("{}\nin `buoy`", msg.trim()));
+        if let Value::Table(t) = &b {
+            if let Some(k) = t.keys().find(|k| !FARM_BUOY_KEYS.contains(&k.as_str())) {
+                let valid: Vec<String> = FARM_BUOY_KEYS.iter().map(|k| format!("`{k}`")).collect();
+                return Err(in_buoy(&format!(
+                    "unknown field `{k}`, expected one of {}",
+                    valid.join(", ")
+                )));
+            }
+            if !t.contains_key("volume") {
+                return Err(in_buoy("missing field `volume`"));
+            }
+        }
+        let spec: BuoySpec = b.try_into().map_err(|e| in_buoy(&e.to_string()))?;
+        Ok(BuoySpec {
+            shape: BuoyShape::Cylinder,
+            ..spec
+        })
     }
 
     /// A `[[group]]`: its name, Morison keys and section overrides.

@@ -173,11 +173,15 @@ pub struct MeshSpec {
 /// slots that differ.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FarmSpec {
-    /// Grid, frame, bridles, buoys and anchor lines (aqua-mesh).
+    /// Grid, frame, bridles and anchor lines (aqua-mesh).
     #[serde(flatten)]
     pub params: FarmParams,
     /// `[farm.cage]`: the cage of every slot without a `[[farm.slot]]`.
     pub cage: CageSpec,
+    /// `[farm.buoy]`: the buoy on every plate, a `[[buoy]]` of [`crate::buoy::FARM_BUOY_KEYS`]
+    /// (shape `cylinder`; checked with the farm, [`BuoySpec::resolve_farm`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub buoy: Option<BuoySpec>,
     /// `[[farm.slot]]`: cells with their own cage or none (at most one per cell).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub slot: Vec<Located<SlotSpec>>,
