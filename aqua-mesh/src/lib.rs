@@ -74,7 +74,7 @@ pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, ResolvedCage};
 pub use collar::{Collar, CollarParams};
 pub use error::{FilePos, MeshError, Result};
-pub use farm::{BuoyParams, FarmBuoy, FarmCounts, FarmMesh, FarmParams};
+pub use farm::{FarmCounts, FarmMesh, FarmParams};
 pub use io::gmsh::{GmshParams, import_gmsh, read_msh};
 pub use io::vtm::{
     BlockArray, BlockKind, BlockLayout, MultiblockSeries, NameTables, StepArrays, write_geometry,

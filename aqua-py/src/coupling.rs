@@ -147,7 +147,11 @@ impl Coupling {
     fn new(py: Python<'_>, scene: &Bound<'_, PyAny>, out: Option<PathBuf>) -> PyResult<Self> {
         let scene = match scene.cast::<Scene>() {
             Ok(s) => s.get().inner.clone(),
-            Err(_) => aqua_sim::read_scene(&scene.extract::<PathBuf>()?).map_err(err)?,
+            Err(_) => aqua_sim::read_scene(
+                aqua_sim::SceneInput::File(&scene.extract::<PathBuf>()?),
+                &[],
+            )
+            .map_err(err)?,
         };
         let c = py
             .detach(|| {

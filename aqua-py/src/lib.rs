@@ -134,7 +134,7 @@ impl Scene {
     /// Reads a scene file.
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
-        aqua_sim::read_scene(&path)
+        aqua_sim::read_scene(aqua_sim::SceneInput::File(&path), &[])
             .map(|inner| Self { inner })
             .map_err(err)
     }
@@ -149,9 +149,15 @@ impl Scene {
             serde_json::from_str(&json).map_err(|e| InputError::new_err(format!("{path}: {e}")))?;
         let text = toml::to_string(&value)
             .map_err(|e| InputError::new_err(format!("{path}: not a scene table: {e}")))?;
-        aqua_sim::scene::parse_scene(&text, Path::new(path))
-            .map(|inner| Self { inner })
-            .map_err(err)
+        aqua_sim::read_scene(
+            aqua_sim::SceneInput::Text {
+                text: &text,
+                path: Path::new(path),
+            },
+            &[],
+        )
+        .map(|inner| Self { inner })
+        .map_err(err)
     }
 
     /// The scene name.

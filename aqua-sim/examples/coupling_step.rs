@@ -16,7 +16,13 @@ fn main() -> Result<(), SimError> {
     let text = std::fs::read_to_string(root.join("examples/mooring-chain.toml"))
         .map_err(|e| SimError::input(e.to_string()))?
         .replace("segments = 80", "segments = 160");
-    let scene = aqua_sim::scene::parse_scene(&text, &root.join("examples/chain160.toml"))?;
+    let scene = aqua_sim::scene::read_scene(
+        aqua_sim::scene::SceneInput::Text {
+            text: &text,
+            path: &root.join("examples/chain160.toml"),
+        },
+        &[],
+    )?;
     let mut c = Coupling::new(scene)?;
     c.init()?;
     let (dt, n) = (0.1, 200);

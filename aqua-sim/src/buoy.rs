@@ -14,8 +14,14 @@
 //! A farm builder makes buoys by pushing [`BuoySpec`]s (with a `node` reference) into a
 //! [`crate::Scene`]'s `buoy` list; [`BuoySpec::resolve`] checks one and gives what the
 //! structure and the water loads need.
+//!
+//! A `[[farm]]`'s `[farm.buoy]` is a [`BuoySpec`] too, with fewer keys
+//! ([`FARM_BUOY_KEYS`]) and the farm's own defaults ([`BuoySpec::resolve_farm`]): a vertical
+//! cylinder of `volume` V (required) and `height` (default V^(1/3)), `drag_area` (default 0)
+//! instead of a drag coefficient, on the top of every plate's pendant.
 
 use aqua_hydro::{PointProps, PointShape};
+use aqua_mesh::MeshError;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -141,6 +147,16 @@ fn non_negative(key: &str, v: f64) -> Result<f64, String> {
         Err(format!("{key} = {v}: must be a finite number >= 0"))
     }
 }
+
+/// The keys of `[farm.buoy]`, in the order messages list them: the others of [`BuoySpec`]
+/// (shape, diameter, position, …) do not apply to a farm's buoys.
+pub const FARM_BUOY_KEYS: &[&str] = &[
+    "volume",
+    "mass",
+    "height",
+    "drag_area",
+    "added_mass_coefficient",
+];
 
 const ZERO_VOLUME: &str = "a buoy with zero volume: give `diameter` or `volume` > 0, or \
                            shape = \"point\" for a node with mass and drag only (a coupling plate)";
@@ -296,6 +312,54 @@ impl BuoySpec {
     }
 }
 
+impl BuoySpec {
+    /// `[farm.buoy]` of the farm `obj` (only [`FARM_BUOY_KEYS`] given, `volume` among them;
+    /// the reader sees to both): a vertical cylinder of volume V > 0 and height H (default
+    /// V^(1/3)), drag area C_D·A (default 0), added-mass coefficient (default a cylinder's,
+    /// [`BuoyShape::default_added_mass`]). Errors name `buoy.KEY`, its value and what is valid.
+    pub fn resolve_farm(&self, obj: &str) -> Result<Buoy, MeshError> {
+        let volume = self.volume.unwrap_or(0.0);
+        if !(volume.is_finite() && volume > 0.0) {
+            return Err(MeshError::param(
+                obj,
+                "buoy.volume",
+                volume,
+                "must be a finite number > 0",
+            ));
+        }
+        let height = match self.height {
+            Some(h) => aqua_mesh::limits::length(obj, "buoy.height", h, "")?,
+            None => volume.cbrt(),
+        };
+        let drag_area = self.drag_area.unwrap_or(0.0);
+        for (k, v) in [
+            ("buoy.mass", self.mass),
+            ("buoy.drag_area", drag_area),
+            (
+                "buoy.added_mass_coefficient",
+                self.added_mass_coefficient.unwrap_or(0.0),
+            ),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(MeshError::param(obj, k, v, "must be a finite number >= 0"));
+            }
+        }
+        Ok(Buoy {
+            mass: self.mass,
+            seabed_stiffness: 0.0,
+            props: Some(PointProps {
+                volume,
+                shape: PointShape::Prism { height },
+                drag_area,
+                added_mass: self
+                    .added_mass_coefficient
+                    .unwrap_or(BuoyShape::Cylinder.default_added_mass()),
+            }),
+            size: height,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -368,6 +432,35 @@ mod tests {
             s.resolve()
                 .unwrap_err()
                 .contains("both `position` and `node`")
+        );
+    }
+
+    #[test]
+    fn a_farm_buoy_is_a_cylinder_with_the_farm_defaults() {
+        let s = BuoySpec {
+            volume: Some(2.0),
+            mass: 150.0,
+            ..Default::default()
+        };
+        let b = s.resolve_farm("farm").unwrap();
+        let p = b.props.unwrap();
+        // height V^(1/3), no drag, a vertical cylinder's C_a = 1 (docs/guide/scene.md)
+        assert_eq!(p.volume, 2.0);
+        assert_eq!(
+            p.shape,
+            PointShape::Prism {
+                height: 2f64.cbrt()
+            }
+        );
+        assert_eq!((p.drag_area, p.added_mass, b.mass), (0.0, 1.0, 150.0));
+        let bad = BuoySpec {
+            volume: Some(-1.0),
+            ..Default::default()
+        };
+        let e = bad.resolve_farm("farm").unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "farm: `buoy.volume` = -1 is invalid: must be a finite number > 0"
         );
     }
 }

@@ -320,7 +320,14 @@ mod tests {
             output_interval = {output_interval}
         "#
         );
-        let scene = crate::scene::parse_scene(&text, Path::new("chain.toml")).unwrap();
+        let scene = crate::scene::read_scene(
+            crate::scene::SceneInput::Text {
+                text: &text,
+                path: Path::new("chain.toml"),
+            },
+            &[],
+        )
+        .unwrap();
         let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         struct Rows(Vec<Vec<f64>>);
         impl Observer for Rows {

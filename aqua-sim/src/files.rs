@@ -544,7 +544,10 @@ pub fn write_kinematics(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Frame, Observer, PrepareOptions, Simulation, prepare, scene::parse_scene};
+    use crate::{
+        Frame, Observer, PrepareOptions, Simulation, prepare,
+        scene::{SceneInput, read_scene},
+    };
 
     /// One output frame, owned: state, outputs, wake factors, summary row.
     type Kept = (State, Outputs, Vec<f64>, SummaryRow);
@@ -571,7 +574,14 @@ mod tests {
             t_end = 0.3
             output_interval = 0.1
         "#;
-        let scene = parse_scene(text, Path::new("chain.toml")).unwrap();
+        let scene = read_scene(
+            SceneInput::Text {
+                text,
+                path: Path::new("chain.toml"),
+            },
+            &[],
+        )
+        .unwrap();
         let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         struct Keep(Vec<Kept>);
         impl Observer for Keep {

@@ -60,5 +60,5 @@ pub use plan::{Integrator, Plan, PrepareOptions, Prepared, SceneSource, prepare}
 pub use post::{SummaryRow, net_force, total_volume};
 pub use run::{Ending, Frame, Observer, RunRecord, Simulation};
 pub use run_scene::{RunOptions, RunOutcome, Written, run_scene};
-pub use scene::{Scene, read_scene};
+pub use scene::{Scene, SceneInput, read_scene};
 pub use solvers::{Stepper, start_integrator, static_equilibrium};

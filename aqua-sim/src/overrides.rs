@@ -5,7 +5,7 @@
 //! index or `*` for every entry: `cage.0.element_length`, `analysis.dynamic.dt`,
 //! `line.*.segments`, `sea.current.speed`. The last key may be new (a default the file left
 //! out); whether it exists in the schema is decided by reading the changed scene exactly like a
-//! file ([`crate::scene::parse_scene_with`]), so an unknown or mistyped key is the same error as
+//! file ([`crate::scene::read_scene`]), so an unknown or mistyped key is the same error as
 //! in the file, prefixed with the override that caused it.
 //!
 //! Values are TOML (`5`, `0.05`, `[0, 0, -50]`, `"hht"`); a value that is not TOML is taken as a

@@ -5,7 +5,7 @@ use crate::build::{Built, Prescribed, build};
 use crate::diagnostic::Diagnostic;
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
-use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, read_scene_with};
+use crate::scene::{AnalysisKind, DEFAULT_DT, Scene, SceneInput, read_scene};
 use aqua_fem::{DynamicSettings, ExplicitSettings, StaticSettings};
 use std::path::Path;
 
@@ -118,7 +118,7 @@ pub fn prepare(options: PrepareOptions<'_>) -> Result<Prepared> {
         prescribed,
     } = options;
     let scene = match source {
-        SceneSource::File(path) => read_scene_with(path, overrides)?,
+        SceneSource::File(path) => read_scene(SceneInput::File(path), overrides)?,
         SceneSource::Scene(scene) if overrides.is_empty() => *scene,
         SceneSource::Scene(scene) => {
             return Err(SimError::input(format!(

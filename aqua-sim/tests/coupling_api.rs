@@ -43,7 +43,14 @@ fn scene(kind: &str, dynamic: &str) -> aqua_sim::Scene {
             fy = 10.0 * s,
         );
     }
-    aqua_sim::scene::parse_scene(&text, Path::new("coupled-body.toml")).unwrap()
+    aqua_sim::scene::read_scene(
+        aqua_sim::scene::SceneInput::Text {
+            text: &text,
+            path: Path::new("coupled-body.toml"),
+        },
+        &[],
+    )
+    .unwrap()
 }
 
 const POINTS: [&str; 3] = ["l1/fairlead", "l2/fairlead", "l3/fairlead"];

@@ -54,7 +54,14 @@ fn scene(dt: f64, t_end: f64) -> aqua_sim::Scene {
         "#,
         FAIRLEAD[0], FAIRLEAD[1], FAIRLEAD[2]
     );
-    aqua_sim::scene::parse_scene(&text, Path::new("coupled-chain.toml")).unwrap()
+    aqua_sim::scene::read_scene(
+        aqua_sim::scene::SceneInput::Text {
+            text: &text,
+            path: Path::new("coupled-chain.toml"),
+        },
+        &[],
+    )
+    .unwrap()
 }
 
 /// The scene's surge d = r(t)·A·sin(2πt/T) with the smooth start r = 10s³ − 15s⁴ + 6s⁵

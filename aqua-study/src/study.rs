@@ -31,7 +31,7 @@
 use aqua_sim::Extreme;
 use aqua_sim::check::free_dofs;
 use aqua_sim::overrides::{Override, check_path_syntax, parse_value};
-use aqua_sim::scene::{AnalysisKind, read_scene_with};
+use aqua_sim::scene::{AnalysisKind, SceneInput, read_scene};
 use aqua_sim::{Ending, Frame, Observer, Simulation};
 use aqua_sim::{PrepareOptions, prepare};
 use aqua_sim::{Result, SimError};
@@ -416,7 +416,7 @@ impl StudySpec {
             )));
         }
         for s in self.settings() {
-            read_scene_with(&self.scene, &self.overrides(&s))?;
+            read_scene(SceneInput::File(&self.scene), &self.overrides(&s))?;
         }
         Ok(())
     }

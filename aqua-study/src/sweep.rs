@@ -160,7 +160,11 @@ impl Sweep {
             cases,
         };
         for c in &sweep.cases {
-            aqua_sim::scene::read_scene_with(&sweep.scene, &c.overrides).map_err(|e| {
+            aqua_sim::scene::read_scene(
+                aqua_sim::scene::SceneInput::File(&sweep.scene),
+                &c.overrides,
+            )
+            .map_err(|e| {
                 SimError::input(format!(
                     "{}: case {} ({}): {}",
                     sweep.file.display(),

@@ -2,7 +2,7 @@
 //! #segmented-lines, #design-warnings): static equilibria against equations solved here
 //! independently, the warnings on a bad and a good scene, and the errors of bad input.
 
-use aqua_sim::scene::parse_scene;
+use aqua_sim::scene::{SceneInput, read_scene};
 use aqua_sim::{Diagnostic, Frame, Observer, PrepareOptions, Simulation, prepare};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -35,7 +35,7 @@ impl Observer for Capture {
 /// Statics of a scene text: the capture (build and load diagnostics included) and the
 /// static iteration count.
 fn statics(text: &str) -> (Capture, usize) {
-    let scene = parse_scene(text, Path::new("buoys-test.toml")).unwrap();
+    let scene = scene_of(text, Path::new("buoys-test.toml")).unwrap();
     let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     let mut cap = Capture::default();
     cap.codes.extend(prep.diagnostics().iter().map(|d| d.code));
@@ -46,7 +46,7 @@ fn statics(text: &str) -> (Capture, usize) {
 }
 
 fn node_of(text: &str, reference: &str) -> usize {
-    let scene = parse_scene(text, Path::new("buoys-test.toml")).unwrap();
+    let scene = scene_of(text, Path::new("buoys-test.toml")).unwrap();
     let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     aqua_sim::resolve_ref(&prep.built.mesh, reference).unwrap()[0]
 }
@@ -254,7 +254,7 @@ fn example(name: &str) -> String {
 #[test]
 fn only_free_collars_are_floating_pipes() {
     let floats = |name: &str| {
-        let scene = parse_scene(&example(name), Path::new(name)).unwrap();
+        let scene = scene_of(&example(name), Path::new(name)).unwrap();
         let prep = prepare(PrepareOptions::scene(scene)).unwrap();
         let labels: Vec<String> = prep
             .built
@@ -295,7 +295,7 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
     let text = "[sea]\ndepth = 50\n[[line]]\nanchor = [0, 0, -40]\nfairlead = [30, 0, 0]\n\
                 length = 49.9\nsegments = 10\ndiameter = 0.05\nmass_per_length = 10\n\
                 ea = 1e8\nfixed = [\"anchor\", \"fairlead\"]\n";
-    let scene = parse_scene(text, Path::new("taut.toml")).unwrap();
+    let scene = scene_of(text, Path::new("taut.toml")).unwrap();
     let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     let taut: Vec<_> = prep
         .diagnostics()
@@ -309,7 +309,7 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
         taut[0].message
     );
     let ok = text.replace("49.9", "50.1");
-    let scene = parse_scene(&ok, Path::new("taut.toml")).unwrap();
+    let scene = scene_of(&ok, Path::new("taut.toml")).unwrap();
     let prep = prepare(PrepareOptions::scene(scene)).unwrap();
     assert!(
         prep.diagnostics()
@@ -320,7 +320,7 @@ fn a_line_shorter_than_its_chord_is_taut_as_built() {
 
 fn error_of(text: &str) -> String {
     let path = Path::new("bad.toml");
-    match parse_scene(text, path) {
+    match scene_of(text, path) {
         Err(e) => e.chain(),
         Ok(scene) => prepare(PrepareOptions::scene(scene))
             .map(|_| String::new())
@@ -370,4 +370,9 @@ fn bad_buoys_and_segments_are_named() {
         e.contains("[[line]] #1") && e.contains("colour") && e.contains("elements"),
         "{e}"
     );
+}
+
+/// The scene of `text`, named `path` in messages.
+fn scene_of(text: &str, path: &Path) -> aqua_sim::error::Result<aqua_sim::Scene> {
+    read_scene(SceneInput::Text { text, path }, &[])
 }

@@ -21,7 +21,7 @@ fn scene(name: &str, text: &str) -> aqua_sim::Result<aqua_sim::scene::Scene> {
     let dir = scratch(name);
     let path = dir.join("s.toml");
     std::fs::write(&path, text).unwrap();
-    aqua_sim::read_scene(&path)
+    aqua_sim::read_scene(aqua_sim::SceneInput::File(&path), &[])
 }
 
 #[test]

@@ -146,7 +146,7 @@ fn farm_buoys_and_buoy_cylinders_share_the_added_mass_default() {
     let farm = example("farm.toml").replace("added_mass_coefficient = 0.5\n", "");
     assert!(!farm.contains("added_mass_coefficient"));
     let prep = prepare_text(&dir, "farm", &farm);
-    let node = prep.built.farms[0].buoys[0].node;
+    let node = prep.built.farms[0].buoys[0];
     let ca_farm = prep
         .built
         .elements
@@ -307,7 +307,7 @@ fn the_seabed_defaults_have_one_definition() {
     let dir = scratch("defaults-seabed");
     for (name, sea) in [("none", ""), ("empty", "[sea.seabed]\n")] {
         let prep = prepare_text(&dir, name, &cage_scene(sea, ""));
-        assert_eq!(prep.scene.sea.seabed, d, "{name}");
+        assert_eq!(prep.scene.seabed, d, "{name}");
         assert_eq!(
             prep.built.model.environment().seabed,
             Some(Seabed::new(h)),

@@ -9,7 +9,7 @@ use common::*;
 
 use aqua_mesh::Mesh;
 use aqua_sim::build_mesh;
-use aqua_sim::scene::parse_scene;
+use aqua_sim::scene::{SceneInput, read_scene};
 use std::path::Path;
 
 /// The net of `[farm.cage]`: twine diameter and half mesh [m].
@@ -80,7 +80,7 @@ fn inherited() -> String {
 }
 
 fn mesh_of(name: &str, text: &str) -> Mesh {
-    let scene = parse_scene(text, Path::new(&format!("{name}.toml")))
+    let scene = scene_of(text, Path::new(&format!("{name}.toml")))
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     build_mesh(&scene).unwrap().0
 }
@@ -292,7 +292,7 @@ fn bad_slots_name_file_line_value_and_what_is_valid() {
     let check = |name: &str, slots: &str, slot: usize, want: &[&str]| {
         let text = farm_text(slots);
         let file = format!("{name}.toml");
-        let e = match parse_scene(&text, Path::new(&file)) {
+        let e = match scene_of(&text, Path::new(&file)) {
             Ok(_) => panic!("{name}: accepted"),
             Err(e) => e.to_string(),
         };
@@ -368,10 +368,15 @@ fn bad_slots_name_file_line_value_and_what_is_valid() {
     let text = farm_text(
         "\n[[farm.slot]]\nrow = 1\ncolumn = 2\ntype = \"SSM\"\nside = 14.0\ntube_depth = 2.0\n",
     );
-    let scene = parse_scene(&text, Path::new("not-for-type.toml")).unwrap();
+    let scene = scene_of(&text, Path::new("not-for-type.toml")).unwrap();
     let e = build_mesh(&scene).unwrap_err();
     let e = e.chain();
     for w in ["not-for-type.toml", "farm/cage_r1c2", "tube_depth", "SSM"] {
         assert!(e.contains(w), "'{w}' not in: {e}");
     }
+}
+
+/// The scene of `text`, named `path` in messages.
+fn scene_of(text: &str, path: &Path) -> aqua_sim::error::Result<aqua_sim::Scene> {
+    read_scene(SceneInput::Text { text, path }, &[])
 }

@@ -110,7 +110,7 @@ fn solve_scene(
 ) -> aqua_sim::Result<(Vec<[f64; 3]>, usize, f64, f64)> {
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
-    let scene = aqua_sim::read_scene(&path)?;
+    let scene = aqua_sim::read_scene(aqua_sim::SceneInput::File(&path), &[])?;
     let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(scene))?;
     let c = prep.built.sea.constants();
     let (rho_w, g) = (c.density, c.gravity);
@@ -322,7 +322,7 @@ fn bad_pipe_and_bending_keys_name_the_key() {
         let path = dir.join("cage.toml");
         std::fs::write(&path, format!("[[cage]]\ntype = \"CSM\"\n{collar}\n")).unwrap();
         let err = chain(
-            &aqua_sim::read_scene(&path)
+            &aqua_sim::read_scene(aqua_sim::SceneInput::File(&path), &[])
                 .and_then(|s| aqua_sim::prepare(aqua_sim::PrepareOptions::scene(s)))
                 .map(|_| ())
                 .unwrap_err(),

@@ -181,7 +181,7 @@ fn net_triangle_keys_are_checked() {
         "net.element = \"triangle\"\nnet.drag = \"morison\"",
     );
     std::fs::write(dir.join("m.toml"), &text).unwrap();
-    let e = aqua_sim::read_scene(&dir.join("m.toml"))
+    let e = aqua_sim::read_scene(aqua_sim::SceneInput::File(&dir.join("m.toml")), &[])
         .and_then(|s| aqua_sim::prepare(aqua_sim::PrepareOptions::scene(s)))
         .unwrap_err()
         .to_string();
@@ -190,7 +190,7 @@ fn net_triangle_keys_are_checked() {
     std::fs::write(dir.join("h.toml"), &text).unwrap();
     let e = format!(
         "{:#}",
-        aqua_sim::read_scene(&dir.join("h.toml")).unwrap_err()
+        aqua_sim::read_scene(aqua_sim::SceneInput::File(&dir.join("h.toml")), &[]).unwrap_err()
     );
     assert!(e.contains("element") && e.contains("triangle"), "{e}");
 }

@@ -453,7 +453,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = args.out.clone();
     let out = out.as_deref();
     if let Some(path) = &args.scene {
-        let scene = aqua_sim::scene::read_scene(path)?;
+        let scene = aqua_sim::scene::read_scene(aqua_sim::SceneInput::File(path), &[])?;
         let (mesh, _) = aqua_sim::build_mesh(&scene)?;
         return report(&mesh, out, args.json);
     }

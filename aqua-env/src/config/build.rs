@@ -165,9 +165,6 @@ impl SeaSpec {
     /// Validates the table and builds the [`Sea`] and its summary (with warnings).
     pub fn build(&self, opts: &BuildOptions) -> Result<(Sea, SeaSummary), EnvError> {
         let c = self.constants()?;
-        self.seabed
-            .validate()
-            .map_err(|e| EnvError::range(format!("sea.seabed.{}", e.key), e.value, e.valid))?;
         let current = self.build_current(&c)?;
         let mut warnings = Vec::new();
         let w = &self.waves;
@@ -439,24 +436,6 @@ ramp_time = 10.0
         assert!(e.contains("sea.waves.period"), "{e}");
         let e = parse("depth = 10\n[current]\nkind = \"uniform\"\n").unwrap_err();
         assert!(e.contains("sea.current.velocity"), "{e}");
-    }
-
-    #[test]
-    fn bad_seabed_keys_name_key_value_and_range() {
-        let e = parse("depth = 10\n[seabed]\nkbot = -1.0\n").unwrap_err();
-        assert_eq!(e, "sea.seabed.kbot = -1: a finite number >= 0");
-        let e = parse("depth = 10\n[seabed]\nslip_velocity = 0.0\n").unwrap_err();
-        assert_eq!(
-            e,
-            "sea.seabed.slip_velocity = 0: a velocity in m/s, finite and > 0 (default 0.01)"
-        );
-        let e = parse("depth = 10\n[seabed]\nfriction_transverse = -0.5\n").unwrap_err();
-        assert!(
-            e.starts_with("sea.seabed.friction_transverse = -0.5: a friction"),
-            "{e}"
-        );
-        let e = parse("depth = 10\n[seabed]\nkbott = 1.0\n").unwrap_err();
-        assert!(e.contains("kbott") && e.contains("kbot"), "{e}");
     }
 
     #[test]

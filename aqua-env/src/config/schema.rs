@@ -1,10 +1,10 @@
 //! The `[sea]` table's schema (docs/guide/scene.md#sea): the serde types with the binding key
-//! names and every default of the sea's keys. `[sea.seabed]` is aqua-fem's [`SeabedSettings`].
+//! names and every default of the sea's keys. `[sea.seabed]`, the structure's contact with the
+//! bed, is not the sea's: the scene reader (aqua-sim) splits it off before this type sees it.
 
 use crate::constants::{SEA_WATER_DENSITY, SEA_WATER_VISCOSITY, STANDARD_GRAVITY};
 use crate::irregular::Spacing;
 use crate::stretching::Stretching;
-use aqua_fem::SeabedSettings;
 use serde::{Deserialize, Serialize};
 
 fn default_gravity() -> f64 {
@@ -51,11 +51,6 @@ pub struct SeaSpec {
     /// `[sea.waves]`.
     #[serde(default)]
     pub waves: WavesSpec,
-    /// `[sea.seabed]`: contact constants of the flat seabed at z = −depth. The schema, its
-    /// defaults and its checks are aqua-fem's [`SeabedSettings`] (the structure is what touches
-    /// the bed); it is written here because the seabed belongs to the sea.
-    #[serde(default)]
-    pub seabed: SeabedSettings,
 }
 
 impl Default for SeaSpec {
@@ -66,7 +61,6 @@ impl Default for SeaSpec {
             water: WaterSpec::default(),
             current: CurrentSpec::default(),
             waves: WavesSpec::default(),
-            seabed: SeabedSettings::default(),
         }
     }
 }

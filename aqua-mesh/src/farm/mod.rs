@@ -20,7 +20,8 @@
 //!   k counts from 1 along the edge with increasing y (e, w) or x (n, s). The line is a chain
 //!   (optional, at the anchor) then a rope to the plate; the anchor is fixed on the seabed.
 //!
-//! The buoys are returned as [`FarmBuoy`] point bodies for the caller to load, and each part
+//! The buoy nodes are returned for the caller to put its buoy on (aqua-sim's `[farm.buoy]`,
+//! typed as a `[[buoy]]`), and each part
 //! is made by a small function ([`anchor_line`], the buoy list) so that the buoy and
 //! segmented-line builders can replace them.
 
@@ -38,26 +39,8 @@ use grid::{Grid, frame_object};
 use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
 
-/// `[farm.buoy]`: the buoy on every plate (a point body at the top of the plate's pendant).
-#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct BuoyParams {
-    /// Displaced volume V [m³] when fully submerged, > 0.
-    pub volume: f64,
-    /// Mass [kg], default 0.
-    #[serde(default)]
-    pub mass: f64,
-    /// Vertical extent for partial submergence [m] (default V^(1/3)).
-    pub height: Option<f64>,
-    /// C_D·A [m²] for isotropic quadratic drag, default 0.
-    #[serde(default)]
-    pub drag_area: f64,
-    /// Added-mass coefficient C_a (added mass C_a·ρ·V); `None`: the default of a vertical
-    /// cylinder buoy, set by the caller (aqua-sim's `[[buoy]]` defaults).
-    pub added_mass_coefficient: Option<f64>,
-}
-
-/// One `[[farm]]` table but its `cage` table (which the caller types with its net keys).
+/// One `[[farm]]` table but its `cage` and `buoy` tables (which the caller types: the cage with
+/// its net keys, the buoy as a `[[buoy]]`).
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct FarmParams {
@@ -102,25 +85,6 @@ pub struct FarmParams {
     pub anchor: Option<SectionOverride>,
     /// `[farm.chain]`: section of the anchor lines' chain part.
     pub chain: Option<SectionOverride>,
-    /// `[farm.buoy]`: the buoy on every plate.
-    pub buoy: Option<BuoyParams>,
-}
-
-/// A buoy of the farm: its node and properties.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FarmBuoy {
-    /// Mesh node (top of a pendant).
-    pub node: usize,
-    /// Volume [m³].
-    pub volume: f64,
-    /// Mass [kg].
-    pub mass: f64,
-    /// Vertical extent [m].
-    pub height: f64,
-    /// C_D·A [m²].
-    pub drag_area: f64,
-    /// Added-mass coefficient; `None` = the caller's default for a vertical cylinder buoy.
-    pub added_mass_coefficient: Option<f64>,
 }
 
 /// What a farm builds: the mesh (cages, frame, anchor lines as objects) and its buoys.
@@ -128,8 +92,9 @@ pub struct FarmBuoy {
 pub struct FarmMesh {
     /// All objects of the farm.
     pub mesh: Mesh,
-    /// Buoys (node ids of `mesh`).
-    pub buoys: Vec<FarmBuoy>,
+    /// The buoy nodes, one on top of every plate's pendant (node ids of `mesh`); the caller
+    /// puts its `[farm.buoy]` on each.
+    pub buoys: Vec<usize>,
     /// Object names of the cages, slot order (r, then c).
     pub cages: Vec<String>,
     /// Object names of the anchor lines.
@@ -350,11 +315,6 @@ impl FarmParams {
             }
             _ => None,
         };
-        let buoy = self
-            .buoy
-            .as_ref()
-            .ok_or_else(|| missing_table(obj, "buoy", "every farm (one buoy per plate)"))?;
-        let buoy = check_buoy(obj, buoy)?;
         let el = self.element_length.unwrap_or(DEFAULT_ELEMENT_LENGTH);
 
         let grid = Grid::new(self);
@@ -399,13 +359,7 @@ impl FarmParams {
         )?;
         let off = mesh.append(frame_mesh);
         weld_tail(&mut mesh, &welds);
-        let buoys = buoys_local
-            .into_iter()
-            .map(|n| FarmBuoy {
-                node: n + off,
-                ..buoy
-            })
-            .collect();
+        let buoys = buoys_local.into_iter().map(|n| n + off).collect();
         let plate_node = |i: usize, j: usize| off + grid.plate(i, j);
         let mut anchors = Vec::new();
         let span = -self.grid_depth - zb;
@@ -489,14 +443,6 @@ impl FarmMesh {
     }
 }
 
-fn positive(obj: &str, key: &str, v: f64) -> Result<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(MeshError::param(obj, key, v, "must be a finite number > 0"))
-    }
-}
-
 /// A length of the farm [m]: > 0 and within [`crate::limits::MAX_LENGTH`].
 fn length(obj: &str, key: &str, v: f64) -> Result<f64> {
     crate::limits::length(obj, key, v, "")
@@ -555,34 +501,6 @@ fn line_section(
     Ok(s)
 }
 
-fn check_buoy(obj: &str, b: &BuoyParams) -> Result<FarmBuoy> {
-    let volume = positive(obj, "buoy.volume", b.volume)?;
-    let height = match b.height {
-        Some(h) => length(obj, "buoy.height", h)?,
-        None => volume.cbrt(),
-    };
-    for (k, v) in [
-        ("buoy.mass", b.mass),
-        ("buoy.drag_area", b.drag_area),
-        (
-            "buoy.added_mass_coefficient",
-            b.added_mass_coefficient.unwrap_or(0.0),
-        ),
-    ] {
-        if !(v.is_finite() && v >= 0.0) {
-            return Err(MeshError::param(obj, k, v, "must be a finite number >= 0"));
-        }
-    }
-    Ok(FarmBuoy {
-        node: 0,
-        volume,
-        mass: b.mass,
-        height,
-        drag_area: b.drag_area,
-        added_mass_coefficient: b.added_mass_coefficient,
-    })
-}
-
 /// Number of elements of about `el` along `length` (at least one).
 pub(super) fn segments(length: f64, el: f64) -> usize {
     (length / el).round().max(1.0) as usize
@@ -617,10 +535,6 @@ mod tests {
             bridle: section(0.04),
             anchor: section(0.05),
             chain: section(0.06),
-            buoy: Some(BuoyParams {
-                volume: 2.0,
-                ..Default::default()
-            }),
             ..Default::default()
         }
     }
@@ -794,11 +708,6 @@ mod tests {
             ..farm(1, 1)
         });
         assert!(e.contains("frame") && e.contains("[farm.frame]"), "{e}");
-        let e = err(FarmParams {
-            buoy: None,
-            ..farm(1, 1)
-        });
-        assert!(e.contains("buoy"), "{e}");
         let e = err(FarmParams {
             grid_depth: 50.0,
             ..farm(1, 1)

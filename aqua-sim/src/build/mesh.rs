@@ -5,7 +5,7 @@
 use crate::error::{Result, SimError};
 use crate::scene::{NetHydro, Scene};
 use aqua_hydro::WakeModelId;
-use aqua_mesh::{Fairlead, FarmBuoy, FarmCounts, Mesh, PanelNodes};
+use aqua_mesh::{Fairlead, FarmCounts, Mesh, PanelNodes};
 use std::collections::{BTreeMap, HashMap};
 
 fn input(msg: impl Into<String>) -> SimError {
@@ -161,7 +161,9 @@ pub struct BuiltFarm {
     /// Line of its table in the scene file.
     pub line: usize,
     /// Its buoys (point bodies on mesh nodes).
-    pub buoys: Vec<FarmBuoy>,
+    pub buoys: Vec<usize>,
+    /// `[farm.buoy]`, checked: the buoy on each of `buoys`.
+    pub buoy: crate::buoy::Buoy,
     /// Object names of its cages.
     pub cages: Vec<String>,
     /// Object names of its anchor lines.
@@ -290,13 +292,15 @@ fn add_farm(
     p.name = Some(name.clone());
     let at = format!("{}: line {}: [[farm]] #{}", m.file, c.line, i + 1);
     let spec = &c.value;
-    let farm = p
+    let (farm, buoy) = p
         .check_cage("cage", &spec.cage.params)
         .and_then(|_| {
+            let buoy = farm_buoy(&name, spec.buoy.as_ref())?;
             p.build_slots(
                 |r, col| spec.slot_cage(r, col).map(|s| s.params.clone()),
                 seabed_z(scene),
             )
+            .map(|farm| (farm, buoy))
         })
         .map_err(|e| SimError::at(at.clone(), e))?;
     for o in &farm.mesh.objects {
@@ -317,18 +321,30 @@ fn add_farm(
     Ok(BuiltFarm {
         name,
         line: c.line,
-        buoys: buoys
-            .into_iter()
-            .map(|b| FarmBuoy {
-                node: b.node + node_off,
-                ..b
-            })
-            .collect(),
+        buoys: buoys.into_iter().map(|b| b + node_off).collect(),
+        buoy,
         cages: farm.cages,
         anchors: farm.anchors,
         cage_wake: p.cage_wake.unwrap_or(true),
         counts,
     })
+}
+
+/// The `[farm.buoy]` of farm `obj`, checked; it is required.
+fn farm_buoy(
+    obj: &str,
+    buoy: Option<&crate::buoy::BuoySpec>,
+) -> std::result::Result<crate::buoy::Buoy, aqua_mesh::MeshError> {
+    buoy.ok_or_else(|| {
+        aqua_mesh::MeshError::param(
+            obj,
+            "buoy",
+            "(missing)",
+            "[farm.buoy] is required for every farm (one buoy per plate): a section table with \
+             diameter, ea or youngs_modulus, mass_per_length or density",
+        )
+    })?
+    .resolve_farm(obj)
 }
 
 /// Appends a `[[line]]`; a fairlead that names a node is welded to it.

@@ -21,8 +21,8 @@ use crate::error::{Result, SimError};
 use crate::scene::{AnalysisKind, Scene};
 use aqua_env::{BuildOptions, Sea, SeaSummary};
 use aqua_fem::{ExternalMotion, Model};
+use aqua_hydro::CageWake;
 use aqua_hydro::assembly::{Elements, PointElement};
-use aqua_hydro::{CageWake, PointProps};
 use aqua_mesh::{LineElement, Mesh, ObjectKind};
 use std::sync::Arc;
 
@@ -221,12 +221,12 @@ pub fn build(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
 /// loads (as a `[[point]]` on the buoy node).
 fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> Result<()> {
     for f in farms {
-        for b in &f.buoys {
-            if b.mass > 0.0 {
+        for &node in &f.buoys {
+            if f.buoy.mass > 0.0 {
                 st.builder
                     .add_point_body(aqua_fem::PointBody {
-                        node: b.node,
-                        mass: b.mass,
+                        node,
+                        mass: f.buoy.mass,
                         force: [0.0; 3],
                         seabed_stiffness: 0.0,
                     })
@@ -237,17 +237,9 @@ fn add_buoys(file: &str, farms: &[BuiltFarm], st: &mut structure::Structure) -> 
                         )
                     })?;
             }
-            st.hydro_points.push(PointElement {
-                node: b.node,
-                props: PointProps {
-                    volume: b.volume,
-                    shape: aqua_hydro::PointShape::Prism { height: b.height },
-                    drag_area: b.drag_area,
-                    added_mass: b
-                        .added_mass_coefficient
-                        .unwrap_or(crate::buoy::BuoyShape::Cylinder.default_added_mass()),
-                },
-            });
+            if let Some(props) = f.buoy.props {
+                st.hydro_points.push(PointElement { node, props });
+            }
         }
     }
     Ok(())

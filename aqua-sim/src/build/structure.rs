@@ -56,7 +56,7 @@ pub(super) fn environment(scene: &Scene, constants: &Constants) -> Environment {
         gravity: constants.gravity,
         water_density: constants.density,
         seabed: match constants.depth {
-            Depth::Finite(h) => Some(scene.sea.seabed.seabed(h)),
+            Depth::Finite(h) => Some(scene.seabed.seabed(h)),
             Depth::Infinite => None,
         },
     }

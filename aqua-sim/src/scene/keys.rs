@@ -9,14 +9,15 @@ use super::schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, MeshSpec, PanelSpec, PointSpec,
     PrescribedSpec, Scene, SceneWake,
 };
+use super::sea::SeaSection;
 use super::slots::SLOT_KEYS;
-use crate::buoy::BuoySpec;
+use crate::buoy::{BuoySpec, FARM_BUOY_KEYS};
 use aqua_env::SeaSpec;
 use aqua_env::config::{CurrentSpec, SpectrumSpec, WaterSpec, WavesSpec};
 use aqua_fem::{SeabedSettings, StaticSettings};
 use aqua_mesh::{
-    BuoyParams, CageParams, CollarParams, FarmParams, GmshParams, LineParams, LineSegment,
-    NetParams, PanelParams, SectionOverride,
+    CageParams, CollarParams, FarmParams, GmshParams, LineParams, LineSegment, NetParams,
+    PanelParams, SectionOverride,
 };
 
 /// One key of a scene table.
@@ -74,8 +75,17 @@ impl Keys for SeaSpec {
                 Key::Table("water", WaterSpec::keys()),
                 Key::Table("current", CurrentSpec::keys()),
                 Key::Table("waves", WavesSpec::keys()),
-                Key::Table("seabed", SeabedSettings::keys()),
             ],
+        )
+    }
+}
+
+/// `[sea]`: the sea's keys and `[sea.seabed]` (crate::scene::sea).
+impl Keys for SeaSection {
+    fn keys() -> Vec<Key> {
+        with(
+            SeaSpec::keys(),
+            vec![Key::Table("seabed", SeabedSettings::keys())],
         )
     }
 }
@@ -324,18 +334,6 @@ impl Keys for GmshParams {
     }
 }
 
-impl Keys for BuoyParams {
-    fn keys() -> Vec<Key> {
-        values(&[
-            "volume",
-            "height",
-            "mass",
-            "drag_area",
-            "added_mass_coefficient",
-        ])
-    }
-}
-
 impl Keys for FarmParams {
     fn keys() -> Vec<Key> {
         with(
@@ -358,7 +356,6 @@ impl Keys for FarmParams {
                 Key::Table("bridle", SectionOverride::keys()),
                 Key::Table("anchor", SectionOverride::keys()),
                 Key::Table("chain", SectionOverride::keys()),
-                Key::Table("buoy", BuoyParams::keys()),
             ],
         )
     }
@@ -401,13 +398,15 @@ impl Keys for LineSpec {
 }
 
 impl Keys for FarmSpec {
-    /// The grid keys, `[farm.cage]` as a `[[cage]]`, and `[[farm.slot]]` as a `[[cage]]` with
-    /// its cell (crate::scene::slots).
+    /// The grid keys, `[farm.cage]` as a `[[cage]]`, `[farm.buoy]` as a `[[buoy]]` of
+    /// [`FARM_BUOY_KEYS`], and `[[farm.slot]]` as a `[[cage]]` with its cell
+    /// (crate::scene::slots).
     fn keys() -> Vec<Key> {
         with(
             FarmParams::keys(),
             vec![
                 Key::Table("cage", CageSpec::keys()),
+                Key::Table("buoy", values(FARM_BUOY_KEYS)),
                 Key::Array("slot", with(CageSpec::keys(), values(SLOT_KEYS))),
             ],
         )
@@ -541,7 +540,7 @@ impl Keys for Scene {
     fn keys() -> Vec<Key> {
         vec![
             Key::Value("name"),
-            Key::Table("sea", SeaSpec::keys()),
+            Key::Table("sea", SeaSection::keys()),
             Key::Array("cage", CageSpec::keys()),
             Key::Array("panel", PanelSpec::keys()),
             Key::Array("line", LineSpec::keys()),
@@ -585,7 +584,7 @@ pub fn scene_keys() -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_scene;
+    use crate::scene::{SceneInput, read_scene};
     use serde::de::DeserializeOwned;
     use std::path::Path;
     use toml::{Table, Value};
@@ -634,16 +633,22 @@ mod tests {
             value = Value::Table(t);
         }
         let text = toml::to_string(&value).ok()?;
-        parse_scene(&text, Path::new("probe.toml"))
-            .err()
-            .map(|e| e.to_string())
+        read_scene(
+            SceneInput::Text {
+                text: &text,
+                path: Path::new("probe.toml"),
+            },
+            &[],
+        )
+        .err()
+        .map(|e| e.to_string())
     }
 
     /// Every key a scene file accepts, as dotted paths (`sea.current.velocity`,
     /// `cage.net.solidity`, `cage.groups.<name>.diameter`), derived from the schema types
     /// themselves: each table is given an unknown key and the parser's own "expected one of"
     /// list is read back, recursing into every key that is a table, an array of tables or a map of
-    /// tables. The `net.*` and Morison keys that [`parse_scene`] splits off before the mesh types
+    /// tables. The `net.*` and Morison keys that [`read_scene`] splits off before the mesh types
     /// see them come from their own types ([`NetHydro`], [`LineHydro`]), as do `[[group]]`'s
     /// section keys ([`SectionOverride`]).
     fn probed_scene_keys() -> Vec<String> {
@@ -727,6 +732,20 @@ mod tests {
                 .into_iter()
                 .map(|k| format!("farm.slot.{k}")),
         );
+        // `[farm.buoy]` is typed apart from the farm's own keys, as a `[[buoy]]` of fewer keys:
+        // its message in a farm that is otherwise whole.
+        let farm = format!(
+            "[[farm]]\nrows = 1\ncolumns = 1\nspacing = 40\ngrid_depth = 5\n\
+             anchor_length = 100\n[farm.cage]\ntype = \"CSM\"\n[farm.buoy]\n{PROBE} = 1\n"
+        );
+        let text = Value::Table(toml::from_str(&farm).expect("probe farm"));
+        let e = probe_scene(&[], text).expect("an unknown [farm.buoy] key is refused");
+        out.extend(
+            probed_fields(&e)
+                .expect("[farm.buoy] lists its keys")
+                .into_iter()
+                .map(|k| format!("farm.buoy.{k}")),
+        );
         // Keys split off before the mesh types see them.
         for section in ["cage", "panel", "mesh", "farm.cage", "farm.slot"] {
             out.extend(
@@ -792,6 +811,7 @@ mod tests {
             assert_eq!(names::<T>(), fields, "{}", std::any::type_name::<T>());
         }
         same::<SeaSpec>();
+        same::<SeaSection>();
         same::<WaterSpec>();
         same::<CurrentSpec>();
         same::<WavesSpec>();
@@ -805,7 +825,6 @@ mod tests {
         same::<LineSegment>();
         same::<GmshParams>();
         same::<FarmParams>();
-        same::<BuoyParams>();
         same::<NetHydro>();
         same::<LineHydro>();
         same::<PointSpec>();

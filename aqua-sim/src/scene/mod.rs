@@ -1,7 +1,7 @@
 //! Scene files (TOML), one file per job: the schema of the object sections (`schema.rs`), of
 //! the hydrodynamic keys added to mesh tables (`hydro.rs`) and of `[analysis]`
 //! (`analysis.rs`); reading a file with errors that name the file, the line, the key and what
-//! would be valid (`read.rs`, `slots.rs` for `[[farm.slot]]`); and the list of every key
+//! would be valid (`read.rs`, `sea.rs` for the split of `[sea]`, `slots.rs` for `[[farm.slot]]`); and the list of every key
 //! (`keys.rs`).
 //!
 //! Every key is listed in docs/guide/scene.md (checked by `tests/guide.rs` against
@@ -10,7 +10,8 @@
 //!
 //! ```toml
 //! name = "reference-cage" # optional; default: the file stem
-//! [sea]                   # aqua-env SeaSpec (scene.md#sea); [sea.seabed] is aqua-fem SeabedSettings
+//! [sea]                   # aqua-env SeaSpec (scene.md#sea); [sea.seabed] is aqua-fem
+//!                         # SeabedSettings, split off by the reader (`sea.rs`)
 //! [[cage]]                # aqua-mesh CageParams (cages.md#cage-parameters) + net.* hydro keys
 //! [[panel]]               # aqua-mesh PanelParams (cages.md#flat-net-panel) + net.* hydro keys
 //! [[line]]                # aqua-mesh LineParams (cages.md#single-line) + Morison keys
@@ -31,12 +32,13 @@ mod hydro;
 mod keys;
 mod read;
 mod schema;
+mod sea;
 mod slots;
 
 pub use analysis::{AnalysisKind, AnalysisSpec, DEFAULT_DT, DEFAULT_T_END, DynamicSpec, Scheme};
 pub use hydro::{LineHydro, NetDrag, NetHydro};
 pub use keys::{Key, Keys, scene_keys};
-pub use read::{parse_scene, parse_scene_with, read_scene, read_scene_with, read_sea, read_text};
+pub use read::{SceneInput, read_scene, read_sea, read_text};
 pub use schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, Located, MeshSpec, MotionKind, PanelSpec,
     PointSpec, PrescribedSpec, Scene, SceneWake,

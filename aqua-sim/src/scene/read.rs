@@ -8,7 +8,8 @@ use super::schema::{
     CageSpec, FarmSpec, FixSpec, GroupSpec, LineSpec, Located, MeshSpec, PanelSpec, Scene,
     SceneWake,
 };
-use crate::buoy::BuoySpec;
+use super::sea::SeaSection;
+use crate::buoy::{BuoyShape, BuoySpec, FARM_BUOY_KEYS};
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
 use aqua_env::SeaSpec;
@@ -25,12 +26,13 @@ pub fn read_text(path: &Path) -> Result<String> {
 }
 
 /// Reads the `[sea]` table of a scene file (a file holding only sea keys at top level is
-/// accepted too, so a bare sea description can be shared between scenes).
+/// accepted too, so a bare sea description can be shared between scenes); its `[sea.seabed]`
+/// is checked and left out.
 pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     /// A scene seen only for its `[sea]` table; the other sections are checked elsewhere.
     #[derive(serde::Deserialize)]
     struct SeaOnly {
-        sea: SeaSpec,
+        sea: SeaSection,
         #[serde(flatten)]
         _rest: toml::Table,
     }
@@ -38,11 +40,15 @@ pub fn read_sea(path: &Path) -> Result<SeaSpec> {
     let table: toml::Table =
         toml::from_str(&text).map_err(|e| SimError::input(format!("{}: {e}", path.display())))?;
     let err = |e: toml::de::Error| SimError::input(format!("{}: {e}", path.display()));
-    if table.contains_key("sea") {
-        toml::from_str::<SeaOnly>(&text).map(|s| s.sea).map_err(err)
+    let section = if table.contains_key("sea") {
+        toml::from_str::<SeaOnly>(&text)
+            .map(|s| s.sea)
+            .map_err(err)?
     } else {
-        toml::from_str::<SeaSpec>(&text).map_err(err)
-    }
+        toml::from_str::<SeaSection>(&text).map_err(err)?
+    };
+    section.check_seabed(path)?;
+    Ok(section.sea)
 }
 
 /// The raw file: typed where the schema is ours, tables with spans where keys are split
@@ -53,7 +59,7 @@ struct RawScene {
     #[serde(default)]
     name: Option<String>,
     #[serde(default)]
-    sea: SeaSpec,
+    sea: SeaSection,
     #[serde(default)]
     cage: Vec<Spanned<Table>>,
     #[serde(default)]
@@ -163,16 +169,19 @@ impl Ctx<'_> {
     }
 
     /// A `[[farm]]`: its grid keys, its `[farm.cage]` (typed first, so that a mistake in
-    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s, and its
-    /// `[[farm.slot]]`s (crate::scene::slots).
+    /// it is reported as such), whose `net.*` keys are split as a `[[cage]]`'s, its
+    /// `[farm.buoy]` (a [`BuoySpec`] of [`FARM_BUOY_KEYS`]) and its `[[farm.slot]]`s
+    /// (crate::scene::slots).
     fn farm(&self, i: usize, line: usize, mut t: Table) -> Result<FarmSpec> {
         let slots = t.remove("slot");
+        let buoy = t.remove("buoy");
         match t.remove("cage") {
             Some(Value::Table(mut c)) => {
                 let raw = c.clone();
                 let net_hydro = self.net_hydro("farm", i, line, &mut c)?;
                 let cage = self.typed("farm", i, line, "cage", c)?;
                 let params: FarmParams = self.typed("farm", i, line, "", t)?;
+                let buoy = buoy.map(|b| self.farm_buoy(i, line, b)).transpose()?;
                 params
                     .check_cage("cage", &cage)
                     .map_err(|e| self.err("farm", i, line, e))?;
@@ -183,6 +192,7 @@ impl Ctx<'_> {
                         params: cage,
                         net_hydro,
                     },
+                    buoy,
                     slot,
                 })
             }
@@ -196,6 +206,7 @@ impl Ctx<'_> {
             )),
             None => {
                 let _: FarmParams = self.typed("farm", i, line, "", t)?;
+                buoy.map(|b| self.farm_buoy(i, line, b)).transpose()?;
                 Err(self.err(
                     "farm",
                     i,
@@ -205,6 +216,29 @@ impl Ctx<'_> {
                 ))
             }
         }
+    }
+
+    /// A `[farm.buoy]`: only [`FARM_BUOY_KEYS`], `volume` required, typed as a [`BuoySpec`]
+    /// of shape `cylinder` (the farm's other defaults are [`BuoySpec::resolve_farm`]'s).
+    fn farm_buoy(&self, i: usize, line: usize, b: Value) -> Result<BuoySpec> {
+        let in_buoy = |msg: &str| self.err("farm", i, line, format!("{}\nin `buoy`", msg.trim()));
+        if let Value::Table(t) = &b {
+            if let Some(k) = t.keys().find(|k| !FARM_BUOY_KEYS.contains(&k.as_str())) {
+                let valid: Vec<String> = FARM_BUOY_KEYS.iter().map(|k| format!("`{k}`")).collect();
+                return Err(in_buoy(&format!(
+                    "unknown field `{k}`, expected one of {}",
+                    valid.join(", ")
+                )));
+            }
+            if !t.contains_key("volume") {
+                return Err(in_buoy("missing field `volume`"));
+            }
+        }
+        let spec: BuoySpec = b.try_into().map_err(|e| in_buoy(&e.to_string()))?;
+        Ok(BuoySpec {
+            shape: BuoyShape::Cylinder,
+            ..spec
+        })
     }
 
     /// A `[[group]]`: its name, Morison keys and section overrides.
@@ -276,26 +310,34 @@ impl Ctx<'_> {
     }
 }
 
-/// Reads and type-checks a scene file.
-pub fn read_scene(path: &Path) -> Result<Scene> {
-    parse_scene(&read_text(path)?, path)
+/// Where [`read_scene`] reads a scene from.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneInput<'a> {
+    /// A scene file: its text, and its name in messages, the default scene name and the folder
+    /// that relative gmsh files are found in.
+    File(&'a Path),
+    /// The text of a scene; `path` names it as a file would (it need not exist).
+    Text {
+        /// The TOML text.
+        text: &'a str,
+        /// The file it stands for.
+        path: &'a Path,
+    },
 }
 
-/// Type-checks the text of a scene; `path` names it in messages, gives the default scene
-/// name and the folder that relative gmsh files are found in.
-pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
-    parse_scene_with(text, path, &[])
+/// Reads and type-checks a scene, changed by `overrides` (crate::overrides) applied in order
+/// (none: the scene as it is). The scene itself must be valid; each change is then checked
+/// exactly like the file, and the first one that makes the scene invalid is named in the
+/// error. Messages keep the file's line numbers.
+pub fn read_scene(input: SceneInput<'_>, overrides: &[Override]) -> Result<Scene> {
+    match input {
+        SceneInput::File(path) => parse_scene(&read_text(path)?, path, overrides),
+        SceneInput::Text { text, path } => parse_scene(text, path, overrides),
+    }
 }
 
-/// Reads and type-checks a scene file changed by `overrides` (crate::overrides).
-pub fn read_scene_with(path: &Path, overrides: &[Override]) -> Result<Scene> {
-    parse_scene_with(&read_text(path)?, path, overrides)
-}
-
-/// [`parse_scene`] of the text changed by `overrides`, applied in order. The file itself must
-/// be valid; each change is then checked exactly like the file, and the first one that makes
-/// the scene invalid is named in the error. Messages keep the file's line numbers.
-pub fn parse_scene_with(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
+/// [`read_scene`] of a text.
+fn parse_scene(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene> {
     let raw: RawScene = toml::from_str(text)
         .map_err(|e| sweep_file_error(path, text).unwrap_or_else(|| file_error(path, e)))?;
     let ctx = Ctx { path, text };
@@ -378,10 +420,12 @@ impl Ctx<'_> {
                 path.display()
             )));
         }
+        raw.sea.check_seabed(path)?;
         Ok(Scene {
             name,
             path: path.to_path_buf(),
-            sea: raw.sea,
+            sea: raw.sea.sea,
+            seabed: raw.sea.seabed,
             cage: ctx.each(&raw.cage, |i, line, mut t| {
                 let net_hydro = ctx.net_hydro("cage", i, line, &mut t)?;
                 let params = ctx.typed("cage", i, line, "", t)?;
@@ -438,7 +482,7 @@ mod tests {
             "[sea]\ndepth = 60\n\n[[cage]]\ntype = \"SSM\"\nnet.solidity = 0.2\nnet.screen_model = \"S2\"\n\
              net.wake = { model = \"cheng\" }\n",
         );
-        let s = read_scene(&p).unwrap();
+        let s = read_scene(SceneInput::File(&p), &[]).unwrap();
         assert_eq!(s.name, "a");
         assert_eq!(s.cage[0].line, 4);
         assert_eq!(s.cage[0].value.params.net.solidity, Some(0.2));
@@ -451,7 +495,9 @@ mod tests {
             "b.toml",
             "[sea]\ndepth = 60\n\n\n[[cage]]\ntype = \"SSM\"\ncircumferense = 100\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("b.toml") && e.contains("line 5") && e.contains("[[cage]] #1"),
             "{e}"
@@ -461,10 +507,14 @@ mod tests {
             "c.toml",
             "[[cage]]\ntype = \"SSM\"\nnet.screen_model = \"S9\"\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("S9") && e.contains("S1"), "{e}");
         let p = write("d.toml", "[analysis]\nkind = \"quasi\"\n");
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(
             e.contains("line 2") && e.contains("quasi") && e.contains("static+dynamic"),
             "{e}"
@@ -473,7 +523,9 @@ mod tests {
             "e.toml",
             "[[line]]\nanchor = [0,0,-50]\nlength = 10\nmorison = \"M9\"\n",
         );
-        let e = read_scene(&p).unwrap_err().to_string();
+        let e = read_scene(SceneInput::File(&p), &[])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("[[line]] #1") && e.contains("M9"), "{e}");
     }
 }

@@ -7,6 +7,7 @@ use super::hydro::{LineHydro, NetHydro};
 use super::slots::SlotSpec;
 use crate::buoy::BuoySpec;
 use aqua_env::SeaSpec;
+use aqua_fem::SeabedSettings;
 use aqua_mesh::{CageParams, FarmParams, GmshParams, LineParams, PanelParams, SectionOverride};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -172,11 +173,15 @@ pub struct MeshSpec {
 /// slots that differ.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FarmSpec {
-    /// Grid, frame, bridles, buoys and anchor lines (aqua-mesh).
+    /// Grid, frame, bridles and anchor lines (aqua-mesh).
     #[serde(flatten)]
     pub params: FarmParams,
     /// `[farm.cage]`: the cage of every slot without a `[[farm.slot]]`.
     pub cage: CageSpec,
+    /// `[farm.buoy]`: the buoy on every plate, a `[[buoy]]` of [`crate::buoy::FARM_BUOY_KEYS`]
+    /// (shape `cylinder`; checked with the farm, [`BuoySpec::resolve_farm`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub buoy: Option<BuoySpec>,
     /// `[[farm.slot]]`: cells with their own cage or none (at most one per cell).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub slot: Vec<Located<SlotSpec>>,
@@ -215,8 +220,11 @@ pub struct Scene {
     /// The file it came from.
     #[serde(skip)]
     pub path: PathBuf,
-    /// The sea.
+    /// The sea: every `[sea]` key but `seabed`.
     pub sea: SeaSpec,
+    /// `[sea.seabed]`: the structure's contact with the bed (split off `[sea]` by the reader,
+    /// crate::scene::sea).
+    pub seabed: SeabedSettings,
     /// Cages.
     pub cage: Vec<Located<CageSpec>>,
     /// Flat panels.

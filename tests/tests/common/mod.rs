@@ -68,7 +68,8 @@ pub fn static_solve(
     aqua_sim::provider::WaterLoads,
     aqua_fem::StaticSolution,
 ) {
-    let scene = aqua_sim::read_scene(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let scene = aqua_sim::read_scene(aqua_sim::SceneInput::File(path), &[])
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let prep = aqua_sim::prepare(aqua_sim::PrepareOptions::scene(scene))
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let (mut loads, _) = aqua_sim::run::water_loads(&prep, aqua_env::Phase::Static).unwrap();
