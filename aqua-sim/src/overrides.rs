@@ -16,6 +16,7 @@
 use crate::error::{Result, SimError};
 use std::fmt;
 use std::str::FromStr;
+use thiserror::Error;
 use toml::{Table, Value};
 
 /// One `PATH=VALUE` change of a scene.
@@ -96,16 +97,78 @@ impl fmt::Display for Override {
     }
 }
 
+/// Why an override's path cannot be set in a scene's tables.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum OverrideError {
+    /// `--set =5`.
+    #[error("the path is empty")]
+    EmptyPath,
+    /// Empty segments or stray spaces.
+    #[error(
+        "\"{path}\" is not a dotted path: keys separated by single dots, array entries by index \
+         or * (e.g. cage.0.element_length)"
+    )]
+    NotDotted {
+        /// The path given.
+        path: String,
+    },
+    /// Nothing in the scene matches (e.g. `line.*.segments` in a scene without lines).
+    #[error("the scene has nothing to set at {paths}")]
+    NothingToSet {
+        /// The paths tried (an alias stands for several).
+        paths: String,
+    },
+    /// An index into arrays of tables the scene does not have.
+    #[error("the scene has no {at} entries ([[{at}]] tables) to index with {index}")]
+    NoEntries {
+        /// The path so far.
+        at: String,
+        /// The index given.
+        index: String,
+    },
+    /// A key under a value that is not a table.
+    #[error("{at} is the value {value}, not a table: {rest} cannot go under it")]
+    NotATable {
+        /// The path so far.
+        at: String,
+        /// The value there (TOML).
+        value: String,
+        /// The rest of the path.
+        rest: String,
+    },
+    /// A list indexed by something else than an index or `*`.
+    #[error("{at} is a list: the next part must be an index 0..{last} or *, not \"{index}\"")]
+    NotAnIndex {
+        /// The path so far.
+        at: String,
+        /// The last index.
+        last: usize,
+        /// What was given.
+        index: String,
+    },
+    /// An index past the end of a list.
+    #[error("{at} has {len} entries (indices 0..{last}): no entry {index}")]
+    OutOfRange {
+        /// The path so far.
+        at: String,
+        /// The list's length.
+        len: usize,
+        /// Its last index.
+        last: usize,
+        /// The index given.
+        index: usize,
+    },
+}
+
 /// Rejects empty segments and stray spaces (what is a key is the schema's business).
-pub fn check_path_syntax(path: &str) -> std::result::Result<(), String> {
+pub fn check_path_syntax(path: &str) -> std::result::Result<(), OverrideError> {
     if path.is_empty() {
-        return Err("the path is empty".into());
+        return Err(OverrideError::EmptyPath);
     }
     if path.split('.').any(|s| s.is_empty() || s.trim() != s) {
-        return Err(format!(
-            "\"{path}\" is not a dotted path: keys separated by single dots, array entries by \
-             index or * (e.g. cage.0.element_length)"
-        ));
+        return Err(OverrideError::NotDotted {
+            path: path.to_string(),
+        });
     }
     Ok(())
 }
@@ -113,15 +176,16 @@ pub fn check_path_syntax(path: &str) -> std::result::Result<(), String> {
 impl Override {
     /// Applies the change to a scene's table; returns how many places it set (an alias or a
     /// `*` can set several, and none when the scene has no entry to set).
-    pub fn apply(&self, table: &mut Table) -> std::result::Result<usize, String> {
+    pub fn apply(&self, table: &mut Table) -> std::result::Result<usize, OverrideError> {
         let mut n = 0;
         for path in expand(&self.path) {
             let segs: Vec<&str> = path.split('.').collect();
             n += set_in_table(table, &segs, &self.value, "")?;
         }
         if n == 0 {
-            let wanted = expand(&self.path).join(", ");
-            return Err(format!("the scene has nothing to set at {wanted}"));
+            return Err(OverrideError::NothingToSet {
+                paths: expand(&self.path).join(", "),
+            });
         }
         Ok(n)
     }
@@ -133,7 +197,7 @@ fn set_in_table(
     segs: &[&str],
     value: &Value,
     at: &str,
-) -> std::result::Result<usize, String> {
+) -> std::result::Result<usize, OverrideError> {
     let (key, rest) = (segs[0], &segs[1..]);
     let here = if at.is_empty() {
         key.to_string()
@@ -149,20 +213,21 @@ fn set_in_table(
             return Ok(0);
         }
         if is_index(rest[0]) {
-            return Err(format!(
-                "the scene has no {here} entries ([[{here}]] tables) to index with {}",
-                rest[0]
-            ));
+            return Err(OverrideError::NoEntries {
+                at: here,
+                index: rest[0].to_string(),
+            });
         }
         table.insert(key.to_string(), Value::Table(Table::new()));
     }
     match table.get_mut(key) {
         Some(Value::Table(t)) => set_in_table(t, rest, value, &here),
         Some(Value::Array(a)) => set_in_array(a, rest, value, &here),
-        Some(other) => Err(format!(
-            "{here} is the value {other}, not a table: {} cannot go under it",
-            rest.join(".")
-        )),
+        Some(other) => Err(OverrideError::NotATable {
+            at: here,
+            value: other.to_string(),
+            rest: rest.join("."),
+        }),
         None => unreachable!("inserted above"),
     }
 }
@@ -177,23 +242,23 @@ fn set_in_array(
     segs: &[&str],
     value: &Value,
     at: &str,
-) -> std::result::Result<usize, String> {
+) -> std::result::Result<usize, OverrideError> {
     let (index, rest) = (segs[0], &segs[1..]);
     let range = if index == "*" {
         0..a.len()
     } else {
-        let i: usize = index.parse().map_err(|_| {
-            format!(
-                "{at} is a list: the next part must be an index 0..{} or *, not \"{index}\"",
-                a.len().saturating_sub(1)
-            )
+        let i: usize = index.parse().map_err(|_| OverrideError::NotAnIndex {
+            at: at.to_string(),
+            last: a.len().saturating_sub(1),
+            index: index.to_string(),
         })?;
         if i >= a.len() {
-            return Err(format!(
-                "{at} has {} entries (indices 0..{}): no entry {i}",
-                a.len(),
-                a.len().saturating_sub(1)
-            ));
+            return Err(OverrideError::OutOfRange {
+                at: at.to_string(),
+                len: a.len(),
+                last: a.len().saturating_sub(1),
+                index: i,
+            });
         }
         i..i + 1
     };
@@ -209,10 +274,11 @@ fn set_in_array(
             Value::Table(t) => n += set_in_table(t, rest, value, &here)?,
             Value::Array(inner) => n += set_in_array(inner, rest, value, &here)?,
             other => {
-                return Err(format!(
-                    "{here} is the value {other}, not a table: {} cannot go under it",
-                    rest.join(".")
-                ));
+                return Err(OverrideError::NotATable {
+                    at: here,
+                    value: other.to_string(),
+                    rest: rest.join("."),
+                });
             }
         }
     }
@@ -258,16 +324,24 @@ mod tests {
     fn bad_paths_say_what_is_there() {
         let mut t = table("[[cage]]\ntype = \"SSM\"\n[sea]\ndepth = 60\n");
         let e = "cage.3.x=1".parse::<Override>().unwrap().apply(&mut t);
-        assert!(e.unwrap_err().contains("cage has 1 entries"));
+        assert!(e.unwrap_err().to_string().contains("cage has 1 entries"));
         let e = "line.0.segments=1"
             .parse::<Override>()
             .unwrap()
             .apply(&mut t);
-        assert!(e.unwrap_err().contains("no line entries"));
+        assert!(e.unwrap_err().to_string().contains("no line entries"));
         let e = "sea.depth.x=1".parse::<Override>().unwrap().apply(&mut t);
-        assert!(e.unwrap_err().contains("sea.depth is the value 60"));
+        assert!(
+            e.unwrap_err()
+                .to_string()
+                .contains("sea.depth is the value 60")
+        );
         let e = "segments=10".parse::<Override>().unwrap().apply(&mut t);
-        assert!(e.unwrap_err().contains("nothing to set at line.*.segments"));
+        assert!(
+            e.unwrap_err()
+                .to_string()
+                .contains("nothing to set at line.*.segments")
+        );
         assert!("cage..x=1".parse::<Override>().is_err());
         assert!("cage.0.x".parse::<Override>().is_err());
     }

@@ -78,7 +78,7 @@ impl FromStr for Axis {
             ));
         };
         let path = path.trim();
-        check_path_syntax(path).map_err(err)?;
+        check_path_syntax(path).map_err(|e| err(e.to_string()))?;
         let values: Vec<Value> = list
             .split(',')
             .map(str::trim)

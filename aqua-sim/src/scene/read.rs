@@ -350,7 +350,7 @@ fn parse_scene(text: &str, path: &Path, overrides: &[Override]) -> Result<Scene>
     let mut scene = None;
     for (k, o) in overrides.iter().enumerate() {
         let named = |msg: String| SimError::input(format!("{}: --set {o}: {msg}", path.display()));
-        o.apply(&mut table).map_err(named)?;
+        o.apply(&mut table).map_err(|e| named(e.to_string()))?;
         let edited = toml::to_string(&table).map_err(|e| named(e.to_string()))?;
         let raw: RawScene = toml::from_str(&edited).map_err(|e| named(e.to_string()))?;
         // Keep the file's spans so that messages and diagnostics give its line numbers.
