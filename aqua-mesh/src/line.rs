@@ -17,8 +17,8 @@ use crate::Mesh;
 use crate::error::{MeshError, Result};
 use crate::mesh_builder::MeshBuilder;
 use crate::model::{Object, ObjectKind, Role};
-use crate::section::{BendingElement, Section};
-use crate::section_override::SectionOverride;
+use crate::section::Section;
+use crate::section_override::{SectionOverride, section_table};
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -43,204 +43,94 @@ pub enum LineShape {
     Straight,
 }
 
-/// One `[[line]]` table. Section keys (docs/theory/fem.md#sections) sit directly in the table.
-#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct LineParams {
-    /// Strain by which the initial catenary is stretched (not a scene key: the scene builder
-    /// sets [`INITIAL_STRETCH`] when a static solve starts from the shape; 0 keeps the
-    /// unstretched as-built line that dynamics-only runs start from at rest).
-    #[serde(skip)]
-    pub initial_stretch: f64,
-    /// `name` (default `line0`).
-    pub name: Option<String>,
-    /// `anchor` [m].
-    pub anchor: [f64; 3],
-    /// `fairlead` [m] or node reference.
-    pub fairlead: Option<Fairlead>,
-    /// `length` L0 unstretched [m], > 0 (0 = not given; required without segments).
-    #[serde(default)]
-    pub length: f64,
-    /// `segments` N ≥ 1 (or `element_length`).
-    pub segments: Option<u32>,
-    /// `element_length` [m]: N = max(1, round(L0/el)).
-    pub element_length: Option<f64>,
-    /// `group`: element group name (default = object name).
-    pub group: Option<String>,
-    /// `shape`: `catenary` (default) or `straight`.
-    #[serde(default)]
-    pub shape: LineShape,
-    /// `fixed`: node groups fixed, default `["anchor"]`.
-    pub fixed: Option<Vec<String>>,
-    /// `diameter` d [m] (required).
-    pub diameter: Option<f64>,
-    /// `wall_thickness` [m].
-    pub wall_thickness: Option<f64>,
-    /// `sdr`: standard dimension ratio D/t of a pipe, instead of `wall_thickness`.
-    pub sdr: Option<f64>,
-    /// `ea` [N] (or `youngs_modulus`).
-    pub ea: Option<f64>,
-    /// `youngs_modulus` [Pa].
-    pub youngs_modulus: Option<f64>,
-    /// `density` [kg/m³] (or `mass_per_length`).
-    pub density: Option<f64>,
-    /// `mass_per_length` [kg/m].
-    pub mass_per_length: Option<f64>,
-    /// `hydro_diameter` [m].
-    pub hydro_diameter: Option<f64>,
-    /// `volume_diameter` [m].
-    pub volume_diameter: Option<f64>,
-    /// `elastic_diameter` [m].
-    pub elastic_diameter: Option<f64>,
-    /// `compression_ratio`.
-    pub compression_ratio: Option<f64>,
-    /// `axial_damping` [N·s].
-    pub axial_damping: Option<f64>,
-    /// `axial_damping_ratio`.
-    pub axial_damping_ratio: Option<f64>,
-    /// `initial_tension` [N].
-    pub initial_tension: Option<f64>,
-    /// `seabed` contact.
-    pub seabed: Option<bool>,
-    /// `contact_diameter` [m].
-    pub contact_diameter: Option<f64>,
-    /// `material` label.
-    pub material: Option<String>,
-    /// `ei` bending stiffness EI [N·m²] (docs/theory/fem.md#bending-of-sections).
-    pub ei: Option<f64>,
-    /// `bending` on/off (default: on for a pipe or when `ei` is given).
-    pub bending: Option<bool>,
-    /// `bending_element`: `rod` (default) or `hinge`.
-    pub bending_element: Option<BendingElement>,
-    /// `poisson_ratio` ν (default 0.4).
-    pub poisson_ratio: Option<f64>,
-    /// `[[line.segment]]`: the line as segments from anchor to fairlead, instead of
-    /// `length`, `segments`/`element_length`, `group` and the section keys.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub segment: Vec<LineSegment>,
+section_table! {
+    /// One `[[line]]` table. Section keys (docs/theory/fem.md#sections) sit directly in the table.
+    #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct LineParams {
+        /// Strain by which the initial catenary is stretched (not a scene key: the scene builder
+        /// sets [`INITIAL_STRETCH`] when a static solve starts from the shape; 0 keeps the
+        /// unstretched as-built line that dynamics-only runs start from at rest).
+        #[serde(skip)]
+        pub initial_stretch: f64,
+        /// `name` (default `line0`).
+        pub name: Option<String>,
+        /// `anchor` [m].
+        pub anchor: [f64; 3],
+        /// `fairlead` [m] or node reference.
+        pub fairlead: Option<Fairlead>,
+        /// `length` L0 unstretched [m], > 0 (0 = not given; required without segments).
+        #[serde(default)]
+        pub length: f64,
+        /// `segments` N ≥ 1 (or `element_length`).
+        pub segments: Option<u32>,
+        /// `element_length` [m]: N = max(1, round(L0/el)).
+        pub element_length: Option<f64>,
+        /// `group`: element group name (default = object name).
+        pub group: Option<String>,
+        /// `shape`: `catenary` (default) or `straight`.
+        #[serde(default)]
+        pub shape: LineShape,
+        /// `fixed`: node groups fixed, default `["anchor"]`.
+        pub fixed: Option<Vec<String>>,
+    }
+    section: full;
+    tail {
+        /// `[[line.segment]]`: the line as segments from anchor to fairlead, instead of
+        /// `length`, `segments`/`element_length`, `group` and the section keys.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        pub segment: Vec<LineSegment>,
+    }
 }
 
-/// One `[[line.segment]]`: a stretch of a line with its own section, listed from the anchor
-/// to the fairlead. Its elements form the group `name` of the line's object.
-#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct LineSegment {
-    /// `name`: the element group (default `segment<k>`, k from 0 at the anchor).
-    pub name: Option<String>,
-    /// `length` L_k unstretched [m], > 0.
-    pub length: f64,
-    /// `elements` N_k ≥ 1 (or `element_length`).
-    pub elements: Option<u32>,
-    /// `element_length` [m]: N_k = max(1, round(L_k/el)).
-    pub element_length: Option<f64>,
-    /// `diameter` d [m] (required).
-    pub diameter: Option<f64>,
-    /// `wall_thickness` [m].
-    pub wall_thickness: Option<f64>,
-    /// `sdr`: standard dimension ratio D/t of a pipe, instead of `wall_thickness`.
-    pub sdr: Option<f64>,
-    /// `ea` [N] (or `youngs_modulus`).
-    pub ea: Option<f64>,
-    /// `youngs_modulus` [Pa].
-    pub youngs_modulus: Option<f64>,
-    /// `density` [kg/m³] (or `mass_per_length`).
-    pub density: Option<f64>,
-    /// `mass_per_length` [kg/m].
-    pub mass_per_length: Option<f64>,
-    /// `hydro_diameter` [m].
-    pub hydro_diameter: Option<f64>,
-    /// `volume_diameter` [m].
-    pub volume_diameter: Option<f64>,
-    /// `elastic_diameter` [m].
-    pub elastic_diameter: Option<f64>,
-    /// `compression_ratio`.
-    pub compression_ratio: Option<f64>,
-    /// `axial_damping` [N·s].
-    pub axial_damping: Option<f64>,
-    /// `axial_damping_ratio`.
-    pub axial_damping_ratio: Option<f64>,
-    /// `initial_tension` [N].
-    pub initial_tension: Option<f64>,
-    /// `seabed` contact.
-    pub seabed: Option<bool>,
-    /// `contact_diameter` [m].
-    pub contact_diameter: Option<f64>,
-    /// `material` label.
-    pub material: Option<String>,
+section_table! {
+    /// One `[[line.segment]]`: a stretch of a line with its own section, listed from the anchor
+    /// to the fairlead. Its elements form the group `name` of the line's object.
+    #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct LineSegment {
+        /// `name`: the element group (default `segment<k>`, k from 0 at the anchor).
+        pub name: Option<String>,
+        /// `length` L_k unstretched [m], > 0.
+        pub length: f64,
+        /// `elements` N_k ≥ 1 (or `element_length`).
+        pub elements: Option<u32>,
+        /// `element_length` [m]: N_k = max(1, round(L_k/el)).
+        pub element_length: Option<f64>,
+    }
+    section: axial;
+    tail {}
 }
 
 /// The section keys of a line or a segment: diameter, material and the overrides.
-struct SectionKeys<'a> {
+struct SectionKeys {
     diameter: Option<f64>,
-    material: Option<&'a str>,
+    material: Option<String>,
     over: SectionOverride,
 }
 
 impl LineParams {
-    fn section_keys(&self) -> SectionKeys<'_> {
-        SectionKeys {
-            diameter: self.diameter,
-            material: self.material.as_deref(),
-            over: SectionOverride {
-                diameter: None,
-                wall_thickness: self.wall_thickness,
-                sdr: self.sdr,
-                ea: self.ea,
-                youngs_modulus: self.youngs_modulus,
-                density: self.density,
-                mass_per_length: self.mass_per_length,
-                hydro_diameter: self.hydro_diameter,
-                volume_diameter: self.volume_diameter,
-                elastic_diameter: self.elastic_diameter,
-                compression_ratio: self.compression_ratio,
-                axial_damping: self.axial_damping,
-                axial_damping_ratio: self.axial_damping_ratio,
-                initial_tension: self.initial_tension,
-                seabed: self.seabed,
-                contact_diameter: self.contact_diameter,
-                material: None,
-                ei: self.ei,
-                bending: self.bending,
-                bending_element: self.bending_element,
-                poisson_ratio: self.poisson_ratio,
-            },
-        }
+    fn section_keys(&self) -> SectionKeys {
+        SectionKeys::of(self.section_override())
     }
 }
 
 impl LineSegment {
-    fn section_keys(&self) -> SectionKeys<'_> {
-        SectionKeys {
-            diameter: self.diameter,
-            material: self.material.as_deref(),
-            over: SectionOverride {
-                diameter: None,
-                wall_thickness: self.wall_thickness,
-                sdr: self.sdr,
-                ea: self.ea,
-                youngs_modulus: self.youngs_modulus,
-                density: self.density,
-                mass_per_length: self.mass_per_length,
-                hydro_diameter: self.hydro_diameter,
-                volume_diameter: self.volume_diameter,
-                elastic_diameter: self.elastic_diameter,
-                compression_ratio: self.compression_ratio,
-                axial_damping: self.axial_damping,
-                axial_damping_ratio: self.axial_damping_ratio,
-                initial_tension: self.initial_tension,
-                seabed: self.seabed,
-                contact_diameter: self.contact_diameter,
-                material: None,
-                ei: None,
-                bending: None,
-                bending_element: None,
-                poisson_ratio: None,
-            },
-        }
+    fn section_keys(&self) -> SectionKeys {
+        SectionKeys::of(self.section_override())
     }
 }
 
-impl SectionKeys<'_> {
+impl SectionKeys {
+    /// The table's section keys with the diameter and the material apart.
+    fn of(mut over: SectionOverride) -> Self {
+        Self {
+            diameter: over.diameter.take(),
+            material: over.material.take(),
+            over,
+        }
+    }
+
     /// The cable section; `prefix` names the table in messages (`""` or `segment[k].`).
     fn section(&self, obj: &str, prefix: &str) -> Result<Section> {
         let key = |k: &str| format!("{prefix}{k}");
@@ -280,7 +170,7 @@ impl SectionKeys<'_> {
             ));
         }
         let mut section = Section::cable(
-            self.material.unwrap_or("line"),
+            self.material.as_deref().unwrap_or("line"),
             d,
             self.over.youngs_modulus.unwrap_or(0.0),
             self.over.density.unwrap_or(0.0),

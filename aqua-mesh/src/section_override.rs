@@ -1,56 +1,144 @@
 //! The section keys of the scene: overrides of a line group's section, validated
 //! (docs/theory/fem.md#sections key names).
 
-use crate::section::{BendingElement, Section};
+use crate::section::Section;
 use serde::Serialize;
 
-/// Overrides of a line group's section: a `[cage.groups.<group>]` table or the section keys of
-/// a `[[line]]` table (docs/theory/fem.md#sections key names).
-#[derive(Debug, Clone, Default, PartialEq, serde::Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct SectionOverride {
-    /// `diameter` d [m] (also sets the elastic, hydro and volume diameters unless given).
-    pub diameter: Option<f64>,
-    /// `wall_thickness` of a pipe [m].
-    pub wall_thickness: Option<f64>,
-    /// `sdr`: standard dimension ratio D/t of a pipe (> 2), instead of `wall_thickness`.
-    pub sdr: Option<f64>,
-    /// `ea` [N].
-    pub ea: Option<f64>,
-    /// `youngs_modulus` E [Pa].
-    pub youngs_modulus: Option<f64>,
-    /// `density` ρ_s [kg/m³].
-    pub density: Option<f64>,
-    /// `mass_per_length` μ [kg/m].
-    pub mass_per_length: Option<f64>,
-    /// `hydro_diameter` [m].
-    pub hydro_diameter: Option<f64>,
-    /// `volume_diameter` [m].
-    pub volume_diameter: Option<f64>,
-    /// `elastic_diameter` [m].
-    pub elastic_diameter: Option<f64>,
-    /// `compression_ratio` r_c, 0 ≤ r_c ≤ 1.
-    pub compression_ratio: Option<f64>,
-    /// `axial_damping` c_a [N·s].
-    pub axial_damping: Option<f64>,
-    /// `axial_damping_ratio` ζ.
-    pub axial_damping_ratio: Option<f64>,
-    /// `initial_tension` T0 [N].
-    pub initial_tension: Option<f64>,
-    /// `seabed` contact on/off.
-    pub seabed: Option<bool>,
-    /// `contact_diameter` [m].
-    pub contact_diameter: Option<f64>,
-    /// `material` label.
-    pub material: Option<String>,
-    /// `ei`: bending stiffness EI [N·m²] (≥ 0; switches bending on unless `bending = false`).
-    pub ei: Option<f64>,
-    /// `bending`: bending on/off (default: on for pipes and when `ei` is given).
-    pub bending: Option<bool>,
-    /// `bending_element`: `rod` (default) or `hinge`.
-    pub bending_element: Option<BendingElement>,
-    /// `poisson_ratio` ν, 0 ≤ ν < 0.5 (default 0.4).
-    pub poisson_ratio: Option<f64>,
+/// Declares a scene table's struct whose fields are the given ones, then the section keys
+/// (docs/theory/fem.md#sections key names) — every one, or with `axial` all but the bending
+/// keys (`ei`, `bending`, `bending_element`, `poisson_ratio`) — then the given tail fields,
+/// and its `section_override()`: the one declaration of the section keys, their types and
+/// docs, shared by [`SectionOverride`], `[[line]]` and `[[line.segment]]`. (serde's `flatten`
+/// cannot be used: it does not combine with `deny_unknown_fields`.)
+macro_rules! section_table {
+    (
+        $(#[$attr:meta])*
+        pub struct $name:ident { $($head:tt)* }
+        section: $kind:ident;
+        tail { $($tail:tt)* }
+    ) => {
+        section_table!(@struct [$(#[$attr])*] $name [$($head)*] [$($tail)*] $kind);
+        section_table!(@convert $name $kind);
+    };
+    (@struct [$($attr:tt)*] $name:ident [$($head:tt)*] [$($tail:tt)*] full) => {
+        section_table!(@emit [$($attr)*] $name [$($head)*] [$($tail)*] [
+            /// `ei`: bending stiffness EI [N·m²] (≥ 0; switches bending on unless
+            /// `bending = false`; docs/theory/fem.md#bending-of-sections).
+            pub ei: Option<f64>,
+            /// `bending`: bending on/off (default: on for pipes and when `ei` is given).
+            pub bending: Option<bool>,
+            /// `bending_element`: `rod` (default) or `hinge`.
+            pub bending_element: Option<$crate::section::BendingElement>,
+            /// `poisson_ratio` ν, 0 ≤ ν < 0.5 (default 0.4).
+            pub poisson_ratio: Option<f64>,
+        ]);
+    };
+    (@struct [$($attr:tt)*] $name:ident [$($head:tt)*] [$($tail:tt)*] axial) => {
+        section_table!(@emit [$($attr)*] $name [$($head)*] [$($tail)*] []);
+    };
+    (@emit [$($attr:tt)*] $name:ident [$($head:tt)*] [$($tail:tt)*] [$($bend:tt)*]) => {
+        $($attr)*
+        pub struct $name {
+            $($head)*
+            /// `diameter` d [m] (also sets the elastic, hydro and volume diameters unless
+            /// given; required for a line).
+            pub diameter: Option<f64>,
+            /// `wall_thickness` of a pipe [m].
+            pub wall_thickness: Option<f64>,
+            /// `sdr`: standard dimension ratio D/t of a pipe (> 2), instead of
+            /// `wall_thickness`.
+            pub sdr: Option<f64>,
+            /// `ea` [N] (or `youngs_modulus`).
+            pub ea: Option<f64>,
+            /// `youngs_modulus` E [Pa].
+            pub youngs_modulus: Option<f64>,
+            /// `density` ρ_s [kg/m³] (or `mass_per_length`).
+            pub density: Option<f64>,
+            /// `mass_per_length` μ [kg/m].
+            pub mass_per_length: Option<f64>,
+            /// `hydro_diameter` [m].
+            pub hydro_diameter: Option<f64>,
+            /// `volume_diameter` [m].
+            pub volume_diameter: Option<f64>,
+            /// `elastic_diameter` [m].
+            pub elastic_diameter: Option<f64>,
+            /// `compression_ratio` r_c, 0 ≤ r_c ≤ 1.
+            pub compression_ratio: Option<f64>,
+            /// `axial_damping` c_a [N·s].
+            pub axial_damping: Option<f64>,
+            /// `axial_damping_ratio` ζ.
+            pub axial_damping_ratio: Option<f64>,
+            /// `initial_tension` T0 [N].
+            pub initial_tension: Option<f64>,
+            /// `seabed` contact on/off.
+            pub seabed: Option<bool>,
+            /// `contact_diameter` [m].
+            pub contact_diameter: Option<f64>,
+            /// `material` label.
+            pub material: Option<String>,
+            $($bend)*
+            $($tail)*
+        }
+    };
+    (@convert $name:ident full) => {
+        impl $name {
+            /// The section keys given in this table.
+            pub fn section_override(&self) -> $crate::section_override::SectionOverride {
+                section_table!(@fields self [
+                    ei: self.ei,
+                    bending: self.bending,
+                    bending_element: self.bending_element,
+                    poisson_ratio: self.poisson_ratio,
+                ])
+            }
+        }
+    };
+    (@convert $name:ident axial) => {
+        impl $name {
+            /// The section keys given in this table (no bending keys).
+            pub fn section_override(&self) -> $crate::section_override::SectionOverride {
+                section_table!(@fields self [
+                    ei: None,
+                    bending: None,
+                    bending_element: None,
+                    poisson_ratio: None,
+                ])
+            }
+        }
+    };
+    (@fields $s:ident [$($bend:tt)*]) => {
+        $crate::section_override::SectionOverride {
+            diameter: $s.diameter,
+            wall_thickness: $s.wall_thickness,
+            sdr: $s.sdr,
+            ea: $s.ea,
+            youngs_modulus: $s.youngs_modulus,
+            density: $s.density,
+            mass_per_length: $s.mass_per_length,
+            hydro_diameter: $s.hydro_diameter,
+            volume_diameter: $s.volume_diameter,
+            elastic_diameter: $s.elastic_diameter,
+            compression_ratio: $s.compression_ratio,
+            axial_damping: $s.axial_damping,
+            axial_damping_ratio: $s.axial_damping_ratio,
+            initial_tension: $s.initial_tension,
+            seabed: $s.seabed,
+            contact_diameter: $s.contact_diameter,
+            material: $s.material.clone(),
+            $($bend)*
+        }
+    };
+}
+pub(crate) use section_table;
+
+section_table! {
+    /// Overrides of a line group's section: a `[cage.groups.<group>]` table or the section keys
+    /// of a `[[line]]` table (docs/theory/fem.md#sections key names).
+    #[derive(Debug, Clone, Default, PartialEq, serde::Deserialize, Serialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct SectionOverride {}
+    section: full;
+    tail {}
 }
 
 impl SectionOverride {
