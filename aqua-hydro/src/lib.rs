@@ -33,6 +33,7 @@
 pub mod assembly;
 pub mod buoyancy;
 pub mod cage_wake;
+pub mod coefficient_report;
 pub mod coefficients;
 pub mod cylinder;
 pub mod error;
