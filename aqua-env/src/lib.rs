@@ -29,6 +29,8 @@ pub mod ramp;
 pub mod random;
 pub mod record;
 pub mod sea;
+pub mod sea_params;
+pub mod sea_summary_text;
 pub mod spectrum;
 pub mod spreading;
 pub mod stokes;

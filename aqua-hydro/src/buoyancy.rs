@@ -10,7 +10,7 @@
 //! * the force ([`force`]), multiplied by that fraction together with the element's other
 //!   volume forces; its position derivative −∂φ/∂ζ·F is the waterplane stiffness.
 
-use crate::net_panel::V3;
+use crate::types::V3;
 
 /// Buoyancy of a fully submerged volume `volume` [m³] in water of density `rho` [kg/m³] under
 /// gravity `g` [m/s²]: ρ_w·g·V upwards [N].

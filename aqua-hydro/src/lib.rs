@@ -33,6 +33,7 @@
 pub mod assembly;
 pub mod buoyancy;
 pub mod cage_wake;
+pub mod coefficient_report;
 pub mod coefficients;
 pub mod cylinder;
 pub mod error;
@@ -42,6 +43,7 @@ pub mod net_panel;
 pub mod net_triangle;
 pub mod point_body;
 pub mod screen;
+pub mod types;
 pub mod wake;
 pub mod wetted;
 
@@ -53,8 +55,9 @@ pub use cage_wake::{CageShadow, CageWake, CageWakeSource};
 pub use error::HydroError;
 pub use morison_coefficients::{MorisonCoeffs, MorisonModel, MorisonModelId};
 pub use morison_line::LineProps;
-pub use net_panel::{NetProps, Want};
+pub use net_panel::NetProps;
 pub use net_triangle::TwineMap;
 pub use point_body::{PointProps, PointShape};
 pub use screen::{ScreenModel, ScreenModelId};
+pub use types::{Want, ZERO_SPEED};
 pub use wake::{Wake, WakeCell, WakeModel, WakeModelId, WakeSpec, WakeUpdate};

@@ -4,7 +4,7 @@
 
 use crate::buoyancy;
 use crate::morison_coefficients::MorisonModel;
-use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
+use crate::types::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 use std::f64::consts::PI;
 

@@ -5,23 +5,8 @@
 //! downstream; S4 in its native form F = ½ρ_w·φ·A·[C_n(n·U_r)²n + C_t|U_t|U_t].
 
 use crate::screen::{LIFT_EPS, ScreenModel, fridman};
+use crate::types::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
-use nalgebra::{Matrix3, Vector3};
-
-pub(crate) type V3 = Vector3<f64>;
-pub(crate) type M3 = Matrix3<f64>;
-
-/// Below this relative speed [m/s] drag, lift and their Jacobians are zero.
-pub const ZERO_SPEED: f64 = 1e-12;
-
-/// What is asked of a triangle evaluation.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Want {
-    /// ∂F/∂U_r (gives ∂f/∂v).
-    pub dfdv: bool,
-    /// ∂F/∂p_j.
-    pub dfdx: bool,
-}
 
 /// Net properties a triangle needs.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,7 +11,7 @@
 //! 2d/l_p − (d/l_p)² for square meshes open at 90°, growing as the meshes close. The load's
 //! position Jacobian carries ∂Sn/∂x through [`TwineMap::solidity_gradient`].
 
-use crate::net_panel::V3;
+use crate::types::V3;
 
 /// Largest solidity a closing net triangle is given (the screen models' data end well below).
 pub const MAX_TRIANGLE_SOLIDITY: f64 = 0.95;

@@ -2,7 +2,7 @@
 //! (docs/theory/hydrodynamics.md#point-bodies, docs/theory/farm.md#buoys).
 
 use crate::buoyancy;
-use crate::net_panel::{M3, V3, Want, ZERO_SPEED};
+use crate::types::{M3, V3, Want, ZERO_SPEED};
 use crate::wetted;
 
 /// How a point body's submerged volume and wet projected area grow as it goes under.

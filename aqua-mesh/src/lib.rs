@@ -69,6 +69,7 @@ pub mod panel;
 pub mod section;
 pub mod section_override;
 pub mod summary;
+pub mod summary_text;
 
 pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, ResolvedCage};

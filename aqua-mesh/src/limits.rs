@@ -4,6 +4,9 @@
 
 use crate::error::{MeshError, Result};
 
+/// Most nodes a builder accepts (more is likely a unit mistake).
+pub const MAX_NODES: usize = 2_000_000;
+
 /// Longest length a builder accepts [m] (100 km; more is likely a unit mistake).
 pub const MAX_LENGTH: f64 = 1.0e5;
 

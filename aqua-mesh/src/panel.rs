@@ -134,7 +134,7 @@ impl PanelParams {
             }
             (None, None) => (10, 10),
         };
-        if (nw.saturating_add(1)).saturating_mul(nh.saturating_add(1)) > crate::cage::MAX_NODES {
+        if (nw.saturating_add(1)).saturating_mul(nh.saturating_add(1)) > crate::limits::MAX_NODES {
             return Err(MeshError::param(
                 obj,
                 "divisions",

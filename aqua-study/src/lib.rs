@@ -8,4 +8,5 @@
 
 pub mod plot;
 pub mod study;
+pub mod study_text;
 pub mod sweep;

@@ -3,9 +3,10 @@
 //! models (docs/theory/hydrodynamics.md#screen-models, #morison-coefficients).
 
 use crate::InputError;
-use aqua_hydro::coefficients::{MorisonTable, ScreenTable, morison_table, screen_table};
-use aqua_hydro::{MorisonModelId, ScreenModelId};
-use serde::Serialize;
+use aqua_hydro::ScreenModelId;
+use aqua_hydro::coefficient_report::{
+    CoefficientQuery, CoefficientReport, morison_report, screen_report, select_models,
+};
 
 /// Flags of `aqua coeffs`.
 #[derive(clap::Args, Debug)]
@@ -48,45 +49,8 @@ pub struct Args {
     pub json: bool,
 }
 
-/// Screen-model section of the report.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ScreenReport {
-    /// Sn.
-    pub solidity: f64,
-    /// dw0 [m].
-    pub twine_diameter: f64,
-    /// U [m/s].
-    pub speed: f64,
-    /// ν [m²/s].
-    pub viscosity: f64,
-    /// Re = U·dw0/ν.
-    pub reynolds: f64,
-    /// Fixed C_cyl of S3/S6, if given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub cyl_cd: Option<f64>,
-    /// One table per model.
-    pub models: Vec<ScreenTable>,
-}
-
-/// Morison section of the report.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct MorisonReport {
-    /// Net solidity used by M5 (X = Re·Sn², capped at 100).
-    pub solidity: f64,
-    /// One table per model.
-    pub models: Vec<MorisonTable>,
-}
-
 /// Everything `aqua coeffs` prints.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Report {
-    /// Screen models, if any were asked for.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub screen: Option<ScreenReport>,
-    /// Morison models, if any were asked for.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub morison: Option<MorisonReport>,
-}
+pub type Report = CoefficientReport;
 
 fn input(msg: String) -> anyhow::Error {
     InputError::new(msg).into()
@@ -177,36 +141,6 @@ pub fn parse_reynolds(s: &str) -> anyhow::Result<Vec<f64>> {
     Ok(out)
 }
 
-/// Which models a `--model` value selects.
-fn select(model: &str, has_cd: bool) -> anyhow::Result<(Vec<ScreenModelId>, Vec<MorisonModelId>)> {
-    if model == "all" {
-        let screens = ScreenModelId::ALL
-            .into_iter()
-            .filter(|id| *id != ScreenModelId::Const || has_cd)
-            .collect();
-        let morisons = vec![
-            MorisonModelId::M1,
-            MorisonModelId::M2,
-            MorisonModelId::M3,
-            MorisonModelId::M4,
-            MorisonModelId::M5,
-        ];
-        return Ok((screens, morisons));
-    }
-    if let Ok(id) = model.parse::<ScreenModelId>() {
-        return Ok((vec![id], Vec::new()));
-    }
-    match model.parse::<MorisonModelId>() {
-        Ok(id) if !matches!(id, MorisonModelId::None | MorisonModelId::Const) => {
-            Ok((Vec::new(), vec![id]))
-        }
-        _ => Err(input(format!(
-            "--model = \"{model}\": unknown model; valid: all, screen models {}, Morison models M1, M2, M3, M4, M5",
-            ScreenModelId::VALID
-        ))),
-    }
-}
-
 /// Computes the report for the given flags.
 pub fn compute(args: &Args) -> anyhow::Result<Report> {
     if !(args.solidity > 0.0 && args.solidity < 1.0) {
@@ -224,52 +158,34 @@ pub fn compute(args: &Args) -> anyhow::Result<Report> {
             return Err(input(format!("{flag} = {v}: must be a finite number > 0")));
         }
     }
-    let (screens, morisons) = select(&args.model, args.cd.is_some())?;
-    let screen = if screens.is_empty() {
-        None
-    } else {
-        let angles = parse_angles(&args.angles)?;
-        let re = args.speed * args.twine_diameter / args.viscosity;
-        let models = screens
-            .into_iter()
-            .map(|id| {
-                screen_table(
-                    id,
-                    &angles,
-                    args.solidity,
-                    re,
-                    (args.cd, args.cl),
-                    args.cyl_cd,
-                )
-                .map_err(|e| input(format!("--model {id}: {e}")))
-            })
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        Some(ScreenReport {
-            solidity: args.solidity,
-            twine_diameter: args.twine_diameter,
-            speed: args.speed,
-            viscosity: args.viscosity,
-            reynolds: re,
-            cyl_cd: args.cyl_cd,
-            models,
-        })
+    let (screens, morisons) = select_models(&args.model, args.cd.is_some()).ok_or_else(|| {
+        input(format!(
+            "--model = \"{}\": unknown model; valid: all, screen models {}, Morison models M1, M2, M3, M4, M5",
+            args.model,
+            ScreenModelId::VALID
+        ))
+    })?;
+    let table_error = |e| input(format!("--model {e}"));
+    let mut q = CoefficientQuery {
+        screens,
+        morisons,
+        solidity: args.solidity,
+        twine_diameter: args.twine_diameter,
+        speed: args.speed,
+        viscosity: args.viscosity,
+        cyl_cd: args.cyl_cd,
+        cd_cl: (args.cd, args.cl),
+        angles_deg: Vec::new(),
+        reynolds: Vec::new(),
     };
-    let morison = if morisons.is_empty() {
-        None
-    } else {
-        let res = parse_reynolds(&args.reynolds)?;
-        let models = morisons
-            .into_iter()
-            .map(|id| {
-                morison_table(id, &res, args.solidity)
-                    .map_err(|e| input(format!("--model {id}: {e}")))
-            })
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        Some(MorisonReport {
-            solidity: args.solidity,
-            models,
-        })
-    };
+    if !q.screens.is_empty() {
+        q.angles_deg = parse_angles(&args.angles)?;
+    }
+    let screen = screen_report(&q).map_err(table_error)?;
+    if !q.morisons.is_empty() {
+        q.reynolds = parse_reynolds(&args.reynolds)?;
+    }
+    let morison = morison_report(&q).map_err(table_error)?;
     Ok(Report { screen, morison })
 }
 

@@ -340,108 +340,7 @@ pub fn report_with(
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
-    for o in &summary.objects {
-        println!(
-            "{} ({}{}; {} cop{})",
-            o.name,
-            o.kind,
-            kind_words(&o.kind).map_or(String::new(), |w| format!(": {w}")),
-            o.copies,
-            if o.copies == 1 { "y" } else { "ies" }
-        );
-        if let Some(c) = &o.counts {
-            println!(
-                "  NT = {} nodes around, NN = {} side segments, BN = {} cone segments, extension \
-                 segments = {}, ropes = {}; R_top = {:.4} m (top radius), R_bottom = {:.4} m",
-                c.nt, c.nn, c.bn, c.n_ext, c.ropes, c.top_radius, c.bottom_radius
-            );
-            println!(
-                "  element lengths: ring {:.4} m, side {:.4} m, cone {:.4} m",
-                c.ring_element_length, c.side_element_length, c.cone_element_length
-            );
-        }
-        if let Some(n) = &o.net {
-            println!(
-                "  net: dw0 = {} m twine diameter, l_p = {} m half mesh (knot to knot), Sn = {:.4} \
-                 solidity, mean twine element {:.5} m, area {:.2} m²",
-                n.twine_diameter, n.half_mesh, n.solidity, n.mean_twine_length, n.net_area
-            );
-            println!(
-                "  λ = {:.2}{} physical twines per numerical twine (elements {:.2} to {:.2}); twine \
-                 diameters of the model: dws = {:.5} m structural (mass, buoyancy), dwe = {:.5} m \
-                 elastic (stiffness), dwh = {:.4} m hydrodynamic (drag)",
-                n.lambda,
-                if n.lambda_given { " (given)" } else { "" },
-                n.lambda_range[0],
-                n.lambda_range[1],
-                n.structural_diameter,
-                n.elastic_diameter,
-                n.hydro_diameter
-            );
-            if n.element == aqua_mesh::NetElement::Triangle {
-                println!(
-                    "  net element: triangle ({} mesh, Priour): the triangles carry the twines; \
-                     λ and the diameters above are not used",
-                    n.orientation
-                );
-            }
-        }
-        println!(
-            "  {:<16} {:<14} {:>7} {:>7} {:>7} {:>11} {:>9} {:>9} {:>9}",
-            "group",
-            "role",
-            "lines",
-            "panels",
-            "nodes",
-            "weight [N]",
-            "d [m]",
-            "d_e [m]",
-            "d_h [m]"
-        );
-        for g in &o.groups {
-            let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.5}"));
-            println!(
-                "  {:<16} {:<14} {:>7} {:>7} {:>7} {:>11} {:>9} {:>9} {:>9}",
-                g.name,
-                serde_json::to_value(g.role)?.as_str().unwrap_or("?"),
-                g.lines,
-                g.panels,
-                g.nodes,
-                if g.weight > 0.0 {
-                    format!("{:.1}", g.weight)
-                } else {
-                    "-".into()
-                },
-                f(g.diameter),
-                f(g.elastic_diameter),
-                f(g.hydro_diameter)
-            );
-        }
-        if o.groups.iter().any(|g| g.diameter.is_some()) {
-            println!("  d: diameter of mass and buoyancy, d_e: elastic, d_h: hydrodynamic");
-        }
-    }
-    println!(
-        "total: {} nodes, {} lines, {} panels ({} quads, {} triangles){}",
-        summary.nodes,
-        summary.lines,
-        summary.panels,
-        summary.quads,
-        summary.triangles,
-        if summary.total_weight > 0.0 {
-            format!(
-                ", builder weights (sinkers, tip, centre) {:.1} N",
-                summary.total_weight
-            )
-        } else {
-            String::new()
-        }
-    );
-    if notices {
-        for n in &summary.notices {
-            println!("{n}");
-        }
-    }
+    print!("{}", summary.to_text(notices));
     if let Some(path) = out {
         println!("wrote {}", path.display());
     }
@@ -570,15 +469,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             report(&mesh, out, args.json)
         }
     }
-}
-
-/// Plain words for a cage type (docs/theory/cages.md#cage-types), `None` for other objects.
-fn kind_words(kind: &str) -> Option<&'static str> {
-    Some(match kind {
-        "CCT" => "circular cage, conical wall, sinker tube",
-        "CCS" => "circular cage, conical wall, central sinker",
-        "CSM" => "circular cage, straight wall, sinker masses",
-        "SSM" => "square cage, straight wall, sinker masses",
-        _ => return None,
-    })
 }

@@ -5,10 +5,9 @@
 //! time series `t,x,y,z,eta,u,v,w,ax,ay,az` at given points and the component table.
 
 use crate::InputError;
-use aqua_env::config::{
-    CurrentKind, DepthValue, GammaValue, SpectrumShape, SpectrumSpec, WaveKind,
-};
+use aqua_env::config::{CurrentKind, SpectrumShape, WaveKind};
 use aqua_env::record::{MeasuredSea, measure_record};
+use aqua_env::sea_params::SeaParams;
 use aqua_env::{BuildOptions, SeaSpec, SeaSummary, Stretching};
 use aqua_sim::scene;
 use serde::Serialize;
@@ -99,14 +98,6 @@ struct Report<'a> {
     measured: Option<MeasuredSea>,
 }
 
-/// The scene-file spelling of an enum value (its serde name).
-fn key_name<T: Serialize>(v: &T) -> String {
-    match serde_json::to_value(v) {
-        Ok(serde_json::Value::String(s)) => s,
-        _ => "?".into(),
-    }
-}
-
 fn input(msg: String) -> anyhow::Error {
     InputError::new(msg).into()
 }
@@ -126,98 +117,44 @@ fn parse_point(s: &str) -> anyhow::Result<[f64; 3]> {
 }
 
 /// Applies the flags on top of a sea description.
-fn apply_flags(mut spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
-    if let Some(d) = &a.depth {
-        spec.depth = Some(match d.parse::<f64>() {
-            Ok(h) => DepthValue::Metres(h),
-            Err(_) => DepthValue::Word(d.clone()),
-        });
-    }
-    if let Some(g) = a.gravity {
-        spec.gravity = g;
-    }
-    if let Some(c) = &a.current {
-        spec.current.kind = CurrentKind::Uniform;
-        spec.current.velocity = Some([c[0], c[1], c[2]]);
-    }
-    let w = &mut spec.waves;
-    if let Some(k) = &a.kind {
-        w.kind = match k.as_str() {
+fn apply_flags(spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
+    let params = SeaParams {
+        depth: a.depth.clone(),
+        gravity: a.gravity,
+        current: a.current.as_ref().map(|c| [c[0], c[1], c[2]]),
+        kind: a.kind.as_deref().map(|k| match k {
             "airy" => WaveKind::Airy,
             "stokes2" => WaveKind::Stokes2,
             "irregular" => WaveKind::Irregular,
             _ => WaveKind::None,
-        };
-    }
-    if let Some(s) = &a.stretching {
-        w.stretching = Some(match s.as_str() {
+        }),
+        stretching: a.stretching.as_deref().map(|s| match s {
             "vertical" => Stretching::Vertical,
             "wheeler" => Stretching::Wheeler,
             _ => Stretching::None,
-        });
-    }
-    if let Some(r) = a.ramp_time {
-        w.ramp_time = r;
-    }
-    let irregular_flags = a.hs.is_some()
-        || a.tp.is_some()
-        || a.spectrum.is_some()
-        || a.gamma.is_some()
-        || a.components.is_some()
-        || a.seed.is_some()
-        || a.spreading.is_some();
-    if w.kind == WaveKind::Irregular || irregular_flags {
-        if w.kind != WaveKind::Irregular {
-            return Err(input(
-                "--hs/--tp/--spectrum/--gamma/--components/--seed/--spreading need --kind irregular \
-                 (or an irregular sea in the scene)"
-                    .into(),
-            ));
-        }
-        let sp = w.spectrum.get_or_insert_with(SpectrumSpec::default);
-        if let Some(v) = a.hs {
-            sp.hs = Some(v);
-        }
-        if let Some(v) = a.tp {
-            sp.tp = Some(v);
-        }
-        if let Some(s) = &a.spectrum {
-            sp.shape = if s == "pm" {
-                SpectrumShape::Pm
-            } else {
-                SpectrumShape::Jonswap
-            };
-        }
-        if let Some(g) = &a.gamma {
-            sp.gamma = Some(match g.parse::<f64>() {
-                Ok(v) => GammaValue::Number(v),
-                Err(_) => GammaValue::Word(g.clone()),
-            });
-        }
-        if let Some(n) = a.components {
-            sp.components = n;
-        }
-        if let Some(s) = a.seed {
-            sp.seed = s;
-        }
-        if let Some(s) = a.spreading {
-            sp.spreading_s = Some(s);
-        }
-        if let Some(d) = a.direction {
-            sp.mean_direction = d;
-        }
-    } else {
-        if let Some(h) = a.height {
-            w.height = Some(h);
-        }
-        if let Some(t) = a.period {
-            w.period = Some(t);
-        }
-        if let Some(d) = a.direction {
-            w.direction = d;
-        }
-    }
-    Ok(spec)
+        }),
+        ramp_time: a.ramp_time,
+        height: a.height,
+        period: a.period,
+        direction: a.direction,
+        hs: a.hs,
+        tp: a.tp,
+        spectrum: a.spectrum.as_deref().map(|s| match s {
+            "pm" => SpectrumShape::Pm,
+            _ => SpectrumShape::Jonswap,
+        }),
+        gamma: a.gamma.clone(),
+        components: a.components,
+        seed: a.seed,
+        spreading: a.spreading,
+    };
+    params.apply(spec).map_err(|_| {
+        input(
+            "--hs/--tp/--spectrum/--gamma/--components/--seed/--spreading need --kind irregular \
+             (or an irregular sea in the scene)"
+                .into(),
+        )
+    })
 }
 
 /// Run `aqua waves`.
@@ -276,7 +213,7 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         };
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", format_summary(&summary, measured.as_ref()));
+        print!("{}", summary.to_text(measured.as_ref()));
     }
     if let Some(path) = &a.component_table {
         aqua_sim::write_component_table(&sea, path)?;
@@ -293,113 +230,4 @@ pub fn run(a: Args) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// The human-readable sea-state summary.
-pub fn format_summary(s: &SeaSummary, measured: Option<&MeasuredSea>) -> String {
-    use std::fmt::Write as _;
-    let mut o = String::new();
-    let depth = s
-        .depth
-        .map(|d| format!("{d} m"))
-        .unwrap_or_else(|| "infinite".into());
-    let _ = writeln!(
-        o,
-        "sea: g = {} m/s², rho = {} kg/m³, nu = {:e} m²/s, depth = {depth}",
-        s.gravity, s.density, s.kinematic_viscosity
-    );
-    let _ = writeln!(
-        o,
-        "current: {}, surface velocity = [{}, {}, {}] m/s, ramp {} s",
-        key_name(&s.current),
-        s.current_surface_velocity[0],
-        s.current_surface_velocity[1],
-        s.current_surface_velocity[2],
-        s.current_ramp_time
-    );
-    let _ = writeln!(
-        o,
-        "waves: {}{}, ramp {} s",
-        key_name(&s.waves),
-        s.stretching
-            .map(|st| format!(", stretching {}", st.name()))
-            .unwrap_or_default(),
-        s.wave_ramp_time
-    );
-    if !s.regular.is_empty() {
-        let _ = writeln!(
-            o,
-            "  {:>8} {:>8} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8} {:>8} {:>8}",
-            "H [m]",
-            "T [s]",
-            "w [rad/s]",
-            "k [1/m]",
-            "L [m]",
-            "c [m/s]",
-            "kh",
-            "H/L",
-            "Ursell",
-            "dir"
-        );
-        for r in &s.regular {
-            let _ = writeln!(
-                o,
-                "  {:>8.3} {:>8.3} {:>10.5} {:>10.6} {:>10.3} {:>8.3} {:>8} {:>8.4} {:>8} {:>8.1}",
-                r.height,
-                r.period,
-                r.omega,
-                r.wave_number,
-                r.wavelength,
-                r.phase_speed,
-                r.kh.map(|v| format!("{v:.3}")).unwrap_or("inf".into()),
-                r.steepness,
-                r.ursell.map(|v| format!("{v:.3}")).unwrap_or("-".into()),
-                r.direction_deg
-            );
-        }
-    }
-    if let Some(i) = &s.irregular {
-        let _ = writeln!(
-            o,
-            "  spectrum {}: Hs = {} m, Tp = {:.3} s, gamma = {}, {} components ({}), seed {}",
-            i.shape,
-            i.hs.map(|v| v.to_string()).unwrap_or("-".into()),
-            i.tp,
-            i.gamma.map(|g| format!("{g:.3}")).unwrap_or("-".into()),
-            i.components,
-            key_name(&i.spacing),
-            i.seed
-        );
-        let _ = writeln!(
-            o,
-            "  band [{:.4}, {:.4}] rad/s, retained m0 = {:.5} m², Hm0 = {:.4} m, dropped {:.3e} of the energy{}",
-            i.omega_lo,
-            i.omega_hi,
-            i.m0_retained,
-            i.hm0_retained,
-            i.dropped_fraction,
-            i.repeat_period
-                .map(|t| format!(", repeats every {t:.1} s"))
-                .unwrap_or_default()
-        );
-        let _ = writeln!(
-            o,
-            "  direction {} deg, {}",
-            i.mean_direction_deg,
-            i.spreading_s
-                .map(|s| format!("short-crested (cos-2s, s = {s})"))
-                .unwrap_or("long-crested".into())
-        );
-    }
-    if let Some(m) = measured {
-        let _ = writeln!(
-            o,
-            "  measured from a {:.0} s record at x = y = 0: Hs = {:.4} m, Tp = {:.3} s",
-            m.record_seconds, m.hs, m.tp
-        );
-    }
-    for w in &s.warnings {
-        let _ = writeln!(o, "warning: {w}");
-    }
-    o
 }

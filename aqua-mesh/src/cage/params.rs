@@ -2,12 +2,13 @@
 //! applied, values validated, discretisation counts (NT, NN, BN, …) and the default frame
 //! sections.
 
-use super::{DEFAULT_ROPE_SPACING, DEFAULT_SINKER_WEIGHT_PER_METRE, DEFAULT_TIP_WEIGHT, MAX_NODES};
+use super::{DEFAULT_ROPE_SPACING, DEFAULT_SINKER_WEIGHT_PER_METRE, DEFAULT_TIP_WEIGHT};
 use crate::collar::{
     Collar, CollarParams, DEFAULT_PIPE_DIAMETER, DEFAULT_SINKER_TUBE_DIAMETER,
     default_pipe_section, default_sinker_tube_section,
 };
 use crate::error::{MeshError, Result};
+use crate::limits::MAX_NODES;
 use crate::model::{CageType, Mesh};
 use crate::net::{NetParams, NetResolved};
 use crate::section::Section;
