@@ -456,7 +456,7 @@ impl LineParams {
             .iter()
             .map(|st| st.elements)
             .fold(0usize, usize::saturating_add);
-        if n > crate::cage::MAX_NODES {
+        if n > crate::limits::MAX_NODES {
             let key = if self.segment.is_empty() {
                 "segments"
             } else {
@@ -469,7 +469,7 @@ impl LineParams {
                 format!(
                     "gives {n} elements in all; at most {} (from the elements or \
                      element_length of each part)",
-                    crate::cage::MAX_NODES
+                    crate::limits::MAX_NODES
                 ),
             ));
         }

@@ -20,7 +20,6 @@ pub const DEFAULT_TIP_WEIGHT: f64 = 981.0;
 /// Default spacing of the vertical ropes of CCT and CCS cages along the circumference [m]
 /// (`ropes` = round(C / 2.5 m), at least 3).
 pub const DEFAULT_ROPE_SPACING: f64 = 2.5;
-pub use crate::limits::MAX_NODES;
 
 /// Keys of the `[[cage]]` table of each cage type (the cage builder's schema).
 impl CageType {

@@ -219,7 +219,7 @@ impl FarmParams {
     }
 
     /// The frame lines, pendants, bridles and anchor lines must stay within
-    /// [`MAX_NODES`](crate::cage::MAX_NODES) (an upper estimate from the lengths given).
+    /// [`MAX_NODES`](crate::limits::MAX_NODES) (an upper estimate from the lengths given).
     fn check_nodes(&self, obj: &str) -> Result<()> {
         let el = self.element_length.unwrap_or(DEFAULT_ELEMENT_LENGTH);
         let (nc, nr) = (f64::from(self.columns), f64::from(self.rows));
@@ -227,7 +227,7 @@ impl FarmParams {
         let pendants = (nc + 1.0) * (nr + 1.0) * self.grid_depth;
         let lines = 2.0 * (nc + nr + 2.0);
         if let Some(n) = self.anchor_segments
-            && lines * f64::from(n) > crate::cage::MAX_NODES as f64
+            && lines * f64::from(n) > crate::limits::MAX_NODES as f64
         {
             return Err(MeshError::param(
                 obj,
@@ -236,7 +236,7 @@ impl FarmParams {
                 format!(
                     "gives {} anchor-line nodes (> {}); sagging lines need about 40 segments",
                     lines * f64::from(n),
-                    crate::cage::MAX_NODES
+                    crate::limits::MAX_NODES
                 ),
             ));
         }
@@ -246,7 +246,7 @@ impl FarmParams {
             lines * self.anchor_length
         };
         let nodes = (frame + pendants + anchors) / el;
-        if nodes > crate::cage::MAX_NODES as f64 {
+        if nodes > crate::limits::MAX_NODES as f64 {
             return Err(MeshError::param(
                 obj,
                 "element_length",
@@ -255,7 +255,7 @@ impl FarmParams {
                     "gives about {nodes:.3e} frame, pendant, bridle and anchor-line nodes (> {}) \
                      for spacing = {} m, grid_depth = {} m and anchor_length = {} m; likely a \
                      unit mistake (lengths are in metres)",
-                    crate::cage::MAX_NODES,
+                    crate::limits::MAX_NODES,
                     self.spacing,
                     self.grid_depth,
                     self.anchor_length
