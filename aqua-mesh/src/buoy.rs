@@ -30,8 +30,7 @@ pub fn buoy_node(name: &str, position: [f64; 3]) -> Result<Mesh> {
         kind: ObjectKind::Buoy,
         origins: vec![position],
         net: None,
-        counts: None,
-        source_node_tags: Vec::new(),
+        detail: crate::model::ObjectDetail::None,
     });
     Ok(b.mesh)
 }

@@ -84,7 +84,7 @@ pub use limits::MAX_LENGTH;
 pub use line::{Fairlead, INITIAL_STRETCH, LineParams, LineSegment, LineShape};
 pub use model::{
     CageCounts, CageType, Group, LineElement, Mesh, MeshOrientation, NetElement, NetGrouping,
-    Object, ObjectKind, Panel, PanelNodes, PointWeight, Role,
+    Object, ObjectDetail, ObjectKind, Panel, PanelNodes, PointWeight, Role,
 };
 pub use net::{NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};

@@ -574,8 +574,7 @@ impl LineParams {
             kind: ObjectKind::Line,
             origins: vec![self.anchor],
             net: None,
-            counts: None,
-            source_node_tags: Vec::new(),
+            detail: crate::model::ObjectDetail::None,
         });
         Ok(b.mesh)
     }

@@ -286,8 +286,7 @@ impl PanelParams {
             kind: ObjectKind::Panel,
             origins: vec![centre],
             net: Some(grouping),
-            counts: None,
-            source_node_tags: Vec::new(),
+            detail: crate::model::ObjectDetail::None,
         });
         b.mesh.notices = notices;
         Ok(b.mesh)

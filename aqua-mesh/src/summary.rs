@@ -37,7 +37,7 @@ impl Mesh {
                         ObjectKind::Frame => "frame".into(),
                     },
                     copies: o.origins.len(),
-                    counts: o.counts.clone(),
+                    counts: o.counts().cloned(),
                     net: o.net.clone(),
                     groups: self
                         .groups

@@ -29,7 +29,7 @@ fn ssm_worked() -> CageParams {
 #[test]
 fn worked_ssm_counts_exact() {
     let m = ssm_worked().build().unwrap();
-    let c = m.objects[0].counts.clone().unwrap();
+    let c = m.objects[0].counts().cloned().unwrap();
     assert_eq!((c.nt, c.nn, c.bn, c.n_ext), (48, 6, 8, 1));
     assert_eq!(m.nodes.len(), 1057);
     assert_eq!(count(&m, "net_nodes").2, 673);
@@ -218,7 +218,7 @@ fn defaults_table() {
     ];
     for (t, (nt, nn, bn), nodes, net, panels, ropes, ties, ring, bottom, lambda) in rows {
         let m = CageParams::new(t).build().unwrap();
-        let c = m.objects[0].counts.clone().unwrap();
+        let c = m.objects[0].counts().cloned().unwrap();
         assert_eq!((c.nt, c.nn, c.bn), (nt, nn, bn), "{t:?}");
         assert_eq!(m.nodes.len(), nodes, "{t:?}");
         assert_eq!(count(&m, "net_twines").0, net, "{t:?}");
@@ -271,11 +271,11 @@ fn rounding_not_truncation() {
     let mut p = CageParams::new(CageType::Csm);
     p.circumference = Some(119.9);
     p.depth = Some(14.9);
-    let c = p.build().unwrap().objects[0].counts.clone().unwrap();
+    let c = p.build().unwrap().objects[0].counts().cloned().unwrap();
     assert_eq!((c.nt, c.nn), (48, 6));
     let mut p = CageParams::new(CageType::Ssm);
     p.side = Some(29.9);
-    let c = p.build().unwrap().objects[0].counts.clone().unwrap();
+    let c = p.build().unwrap().objects[0].counts().cloned().unwrap();
     assert_eq!(c.nt, 48);
 }
 
@@ -461,7 +461,7 @@ fn check_invariants(m: &Mesh, p: &CageParams, square: bool) {
     // Closed circumference: every net node except the tip is on exactly two ring lines, and
     // every collar node on two top_ring lines.
     let (nt, l) = {
-        let cc = m.objects[0].counts.as_ref().unwrap();
+        let cc = m.objects[0].counts().unwrap();
         (cc.nt, cc.nn + cc.bn)
     };
     let mut deg = vec![0usize; m.nodes.len()];
@@ -544,7 +544,7 @@ proptest! {
         let m = p.build().unwrap();
         check_invariants(&m, &p, t == 3);
         // Counts follow the formulas.
-        let cc = m.objects[0].counts.clone().unwrap();
+        let cc = m.objects[0].counts().cloned().unwrap();
         let l = cc.nn + cc.bn;
         prop_assert_eq!(m.group(0, "net_nodes").unwrap().nodes.len(), cc.nt * l + 1);
         prop_assert_eq!(m.group(0, "net_twines").unwrap().lines.len(), 2 * cc.nt * l);

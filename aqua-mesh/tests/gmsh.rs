@@ -69,7 +69,7 @@ fn msh22_ascii() {
     check_fixture(&m);
     // Dense renumbering keeps the original tags.
     assert_eq!(
-        m.objects[0].source_node_tags,
+        m.objects[0].source_node_tags(),
         (1..=31).collect::<Vec<u64>>()
     );
 }

@@ -71,7 +71,7 @@ fn frustum(n: usize, r1: f64, r2: f64, h: f64) -> f64 {
 
 /// Net area of a circular cage: the side frustum and the cone below it.
 fn circular_area(m: &Mesh, depth: f64, cone: f64) -> f64 {
-    let c = m.objects[0].counts.as_ref().unwrap();
+    let c = m.objects[0].counts().unwrap();
     frustum(c.nt, c.top_radius, c.bottom_radius, depth) + frustum(c.nt, c.bottom_radius, 0.0, cone)
 }
 
@@ -165,7 +165,7 @@ fn twine_stiffness_is_the_strip_of_net_it_represents() {
     // side the chord 2R·sin(π/NT).
     for el in [5.0, 2.5] {
         let m = cage(CageType::Csm, el).build().unwrap();
-        let c = m.objects[0].counts.clone().unwrap();
+        let c = m.objects[0].counts().cloned().unwrap();
         let (nt, nn, l) = (c.nt, c.nn, c.nn + c.bn);
         let chord = 2.0 * c.top_radius * (PI / nt as f64).sin();
         let tw = &m.groups[m.group_index(0, "net_twines").unwrap()].lines;
@@ -218,7 +218,7 @@ fn rope_count_and_length_are_the_designs() {
                 let mut p = cage(kind, el);
                 p.ropes = set;
                 let m = p.build().unwrap();
-                assert_eq!(m.objects[0].counts.as_ref().unwrap().ropes, ropes);
+                assert_eq!(m.objects[0].counts().unwrap().ropes, ropes);
                 let (len, area) = rope_totals(&m);
                 let want = ropes as f64 * rope(kind);
                 assert!(

@@ -411,7 +411,7 @@ pub fn coarse_nets(mesh: &Mesh) -> Vec<Diagnostic> {
     mesh.objects
         .iter()
         .filter_map(|o| {
-            let c = o.counts.as_ref()?;
+            let c = o.counts()?;
             (c.nt < MIN_NET_NODES_AROUND || c.nn < MIN_NET_SIDE_SEGMENTS).then(|| {
                 Diagnostic::warning(
                     "mesh/coarse-net",

@@ -353,8 +353,7 @@ impl ResolvedCage {
             kind: ObjectKind::Cage(self.kind),
             origins: self.origins.clone(),
             net: Some(grouping),
-            counts: Some(counts),
-            source_node_tags: Vec::new(),
+            detail: crate::model::ObjectDetail::Cage(counts),
         });
         b.mesh.notices = notices;
         let mut mesh = b.mesh;

@@ -73,8 +73,7 @@ pub fn anchor_line(
         kind: ObjectKind::Line,
         origins: vec![[anchor.x, anchor.y, anchor.z]],
         net: None,
-        counts: None,
-        source_node_tags: Vec::new(),
+        detail: crate::model::ObjectDetail::None,
     });
     b.mesh.notices = notices;
     Ok(b.mesh)

@@ -193,8 +193,7 @@ pub(super) fn frame_object(
         kind: ObjectKind::Frame,
         origins: vec![[grid.origin[0], grid.origin[1], -grid.depth]],
         net: None,
-        counts: None,
-        source_node_tags: Vec::new(),
+        detail: crate::model::ObjectDetail::None,
     });
     Ok((b.mesh, buoys, welds))
 }

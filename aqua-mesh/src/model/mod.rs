@@ -14,5 +14,5 @@ mod role;
 pub use element::{Group, LineElement, Panel, PanelNodes, PointWeight};
 pub use mesh::Mesh;
 pub use net_grouping::{MeshOrientation, NetElement, NetGrouping};
-pub use object::{CageCounts, CageType, Object, ObjectKind};
+pub use object::{CageCounts, CageType, Object, ObjectDetail, ObjectKind};
 pub use role::Role;

@@ -1,5 +1,6 @@
-//! Objects in a mesh: what built each object and the numbers it keeps (cage counts, net
-//! grouping, gmsh node tags). The builders fill these descriptions; the model needs none of them.
+//! Objects in a mesh: what built each object and what its builder keeps (net
+//! grouping, one `ObjectDetail`: cage counts, gmsh node tags). The builders fill these
+//! descriptions; the model needs none of them.
 
 use crate::model::NetGrouping;
 use serde::{Deserialize, Serialize};
@@ -112,8 +113,41 @@ pub struct Object {
     pub origins: Vec<[f64; 3]>,
     /// Net parameters and mesh-grouping numbers, if the object has a net.
     pub net: Option<NetGrouping>,
-    /// Cage discretisation numbers (cages only).
-    pub counts: Option<CageCounts>,
-    /// Original gmsh node tags of copy 0, in dense node order (imports only).
-    pub source_node_tags: Vec<u64>,
+    /// What its builder keeps about it beyond the mesh (none for most builders).
+    pub detail: ObjectDetail,
+}
+
+/// What a builder keeps about an object beyond its nodes and elements: one slot, so the object
+/// carries no field that only one builder fills, and a builder that keeps nothing adds nothing.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectDetail {
+    /// Nothing.
+    #[default]
+    None,
+    /// A parametric cage's discretisation numbers.
+    Cage(CageCounts),
+    /// An import's original gmsh node tags of copy 0, in dense node order.
+    Gmsh {
+        /// The tags.
+        source_node_tags: Vec<u64>,
+    },
+}
+
+impl Object {
+    /// The cage discretisation numbers (cages only).
+    pub fn counts(&self) -> Option<&CageCounts> {
+        match &self.detail {
+            ObjectDetail::Cage(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The original gmsh node tags of copy 0 (imports only; empty otherwise).
+    pub fn source_node_tags(&self) -> &[u64] {
+        match &self.detail {
+            ObjectDetail::Gmsh { source_node_tags } => source_node_tags,
+            _ => &[],
+        }
+    }
 }

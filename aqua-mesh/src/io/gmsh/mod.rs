@@ -585,8 +585,9 @@ pub fn import_raw(params: &GmshParams, raw: &RawMsh) -> Result<Mesh> {
         kind: ObjectKind::Gmsh,
         origins: origins.clone(),
         net,
-        counts: None,
-        source_node_tags: source_tags,
+        detail: crate::model::ObjectDetail::Gmsh {
+            source_node_tags: source_tags,
+        },
     });
     b.mesh.notices = notices;
     let mut mesh = b.mesh;
