@@ -33,7 +33,9 @@
 pub mod assembly;
 pub mod buoyancy;
 pub mod cage_wake;
+pub mod coefficient_grid;
 pub mod coefficient_report;
+mod coefficient_text;
 pub mod coefficients;
 pub mod cylinder;
 pub mod error;

@@ -45,6 +45,7 @@ pub mod provider;
 pub mod run;
 mod run_json;
 mod run_scene;
+mod run_text;
 pub mod scene;
 mod solvers;
 

@@ -6,6 +6,7 @@
 //! load cases and collects their run folders into one table (`aqua sweep`, `aqua collect`);
 //! [`plot`] draws PNG charts of a run folder or a study (`aqua plot`, `aqua run --plot`).
 
+pub mod local_runner;
 pub mod plot;
 pub mod study;
 pub mod study_text;

@@ -4,6 +4,7 @@
 
 use crate::InputError;
 use aqua_hydro::ScreenModelId;
+use aqua_hydro::coefficient_grid::{parse_angles, parse_reynolds};
 use aqua_hydro::coefficient_report::{
     CoefficientQuery, CoefficientReport, morison_report, screen_report, select_models,
 };
@@ -56,91 +57,6 @@ fn input(msg: String) -> anyhow::Error {
     InputError::new(msg).into()
 }
 
-fn parse_number(flag: &str, s: &str) -> anyhow::Result<f64> {
-    s.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .ok_or_else(|| input(format!("{flag}: \"{s}\" is not a finite number")))
-}
-
-/// Angles in degrees from "a:b:step" or "a,b,c", each in [0, 90].
-pub fn parse_angles(s: &str) -> anyhow::Result<Vec<f64>> {
-    let out = if s.contains(':') {
-        let parts: Vec<&str> = s.split(':').collect();
-        if parts.len() != 3 {
-            return Err(input(format!(
-                "--angles = \"{s}\": use start:stop:step in degrees (e.g. 0:90:15) or a list 0,30,60"
-            )));
-        }
-        let (a, b, st) = (
-            parse_number("--angles", parts[0])?,
-            parse_number("--angles", parts[1])?,
-            parse_number("--angles", parts[2])?,
-        );
-        if !(st > 0.0) || b < a {
-            return Err(input(format!(
-                "--angles = \"{s}\": need start <= stop and step > 0 (e.g. 0:90:15)"
-            )));
-        }
-        let n = ((b - a) / st + 1e-9).floor() as usize;
-        if n > 100_000 {
-            return Err(input(format!(
-                "--angles = \"{s}\": too many angles (step too small)"
-            )));
-        }
-        (0..=n).map(|i| a + i as f64 * st).collect::<Vec<_>>()
-    } else {
-        s.split(',')
-            .map(|p| parse_number("--angles", p))
-            .collect::<anyhow::Result<Vec<_>>>()?
-    };
-    if let Some(bad) = out.iter().find(|a| !(0.0..=90.0).contains(*a)) {
-        return Err(input(format!(
-            "--angles: {bad} deg is outside 0-90 (θ = 0 is flow normal to the net, 90 flow in its plane)"
-        )));
-    }
-    Ok(out)
-}
-
-/// Reynolds numbers from a list or "lo:hi:n" (log-spaced), each > 0.
-pub fn parse_reynolds(s: &str) -> anyhow::Result<Vec<f64>> {
-    let out = if s.contains(':') {
-        let parts: Vec<&str> = s.split(':').collect();
-        if parts.len() != 3 {
-            return Err(input(format!(
-                "--reynolds = \"{s}\": use lo:hi:n (n log-spaced values) or a list 1,10,100"
-            )));
-        }
-        let (lo, hi) = (
-            parse_number("--reynolds", parts[0])?,
-            parse_number("--reynolds", parts[1])?,
-        );
-        let n: usize = parts[2].trim().parse().map_err(|_| {
-            input(format!(
-                "--reynolds = \"{s}\": n must be a whole number >= 2"
-            ))
-        })?;
-        if !(lo > 0.0 && hi > lo) || !(2..=100_000).contains(&n) {
-            return Err(input(format!(
-                "--reynolds = \"{s}\": need 0 < lo < hi and 2 <= n <= 100000"
-            )));
-        }
-        let (a, b) = (lo.log10(), hi.log10());
-        (0..n)
-            .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
-            .collect()
-    } else {
-        s.split(',')
-            .map(|p| parse_number("--reynolds", p))
-            .collect::<anyhow::Result<Vec<_>>>()?
-    };
-    if let Some(bad) = out.iter().find(|r| !(**r > 0.0)) {
-        return Err(input(format!("--reynolds: {bad} must be > 0")));
-    }
-    Ok(out)
-}
-
 /// Computes the report for the given flags.
 pub fn compute(args: &Args) -> anyhow::Result<Report> {
     if !(args.solidity > 0.0 && args.solidity < 1.0) {
@@ -179,94 +95,14 @@ pub fn compute(args: &Args) -> anyhow::Result<Report> {
         reynolds: Vec::new(),
     };
     if !q.screens.is_empty() {
-        q.angles_deg = parse_angles(&args.angles)?;
+        q.angles_deg = parse_angles("--angles", &args.angles).map_err(|e| input(e.0))?;
     }
     let screen = screen_report(&q).map_err(table_error)?;
     if !q.morisons.is_empty() {
-        q.reynolds = parse_reynolds(&args.reynolds)?;
+        q.reynolds = parse_reynolds("--reynolds", &args.reynolds).map_err(|e| input(e.0))?;
     }
     let morison = morison_report(&q).map_err(table_error)?;
     Ok(Report { screen, morison })
-}
-
-/// The text tables.
-pub fn render(report: &Report) -> String {
-    use std::fmt::Write;
-    let mut s = String::new();
-    if let Some(sc) = &report.screen {
-        let _ = writeln!(
-            s,
-            "Screen models: Sn = {}, dw0 = {} m, U = {} m/s, nu = {:e} m2/s, Re = U*dw0/nu = {:.1}{}",
-            sc.solidity,
-            sc.twine_diameter,
-            sc.speed,
-            sc.viscosity,
-            sc.reynolds,
-            match sc.cyl_cd {
-                Some(c) => format!(", C_cyl = {c} (S3/S6)"),
-                None => String::new(),
-            }
-        );
-        let _ = writeln!(
-            s,
-            "theta = 0 deg: flow normal to the net; 90 deg: flow in the net plane"
-        );
-        for m in &sc.models {
-            let _ = writeln!(s, "  {:<7} {}", m.model, m.reference);
-        }
-        let _ = write!(s, "{:>9}", "theta_deg");
-        for m in &sc.models {
-            let _ = write!(
-                s,
-                " {:>10} {:>10}",
-                format!("{} Cd", m.model),
-                format!("{} Cl", m.model)
-            );
-        }
-        let _ = writeln!(s);
-        let n = sc.models.first().map_or(0, |m| m.rows.len());
-        for i in 0..n {
-            let _ = write!(s, "{:>9.2}", sc.models[0].rows[i].theta_deg);
-            for m in &sc.models {
-                let r = m.rows[i];
-                let _ = write!(s, " {:>10.6} {:>10.6}", r.cd, r.cl);
-            }
-            let _ = writeln!(s);
-        }
-    }
-    if let Some(mo) = &report.morison {
-        if report.screen.is_some() {
-            let _ = writeln!(s);
-        }
-        let _ = writeln!(
-            s,
-            "Morison models: Cn, Ct vs Re (Re clamped at 1e7; M5 with Sn = {})",
-            mo.solidity
-        );
-        for m in &mo.models {
-            let _ = writeln!(s, "  {:<7} {}", m.model, m.reference);
-        }
-        let _ = write!(s, "{:>10}", "Re");
-        for m in &mo.models {
-            let _ = write!(
-                s,
-                " {:>10} {:>10}",
-                format!("{} Cn", m.model),
-                format!("{} Ct", m.model)
-            );
-        }
-        let _ = writeln!(s);
-        let n = mo.models.first().map_or(0, |m| m.rows.len());
-        for i in 0..n {
-            let _ = write!(s, "{:>10.4e}", mo.models[0].rows[i].re);
-            for m in &mo.models {
-                let r = m.rows[i];
-                let _ = write!(s, " {:>10.6} {:>10.6}", r.cn, r.ct);
-            }
-            let _ = writeln!(s);
-        }
-    }
-    s
 }
 
 /// Run `aqua coeffs`.
@@ -275,7 +111,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let text = if args.json {
         serde_json::to_string_pretty(&report)? + "\n"
     } else {
-        render(&report)
+        report.to_text()
     };
     use std::io::Write;
     match std::io::stdout().lock().write_all(text.as_bytes()) {

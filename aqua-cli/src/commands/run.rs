@@ -10,10 +10,7 @@
 use crate::interrupted;
 use anyhow::Context;
 use aqua_fem::{StaticProgress, StepReport};
-use aqua_sim::{
-    Diagnostic, Ending, Observer, Override, PrepareOptions, RunOptions, RunOutcome, RunRecord,
-    Written,
-};
+use aqua_sim::{Diagnostic, Ending, Observer, Override, PrepareOptions, RunOptions, RunOutcome};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 
@@ -135,37 +132,19 @@ pub fn run_scene(
     if let Some(e) = late_error {
         eprintln!("{e}");
     }
-    print_step_control(&record);
+    if let Some(note) = record.step_control_note() {
+        eprintln!("{note}");
+    }
     match record.ending {
         Ending::Completed => {
             if !quiet {
-                print_final(&files, &record);
+                print!("{}", record.final_text(&files));
             }
             result?;
             Ok(Ending::Completed)
         }
         Ending::Interrupted => {
-            let partial = match (record.static_converged, record.static_load_factor) {
-                (Some(false), Some(s)) => {
-                    let load = if s < 1.0 {
-                        format!(" at load factor {s:.4}, not the full load")
-                    } else {
-                        String::new()
-                    };
-                    format!(
-                        " (step 0 is the last static iterate{load}: NOT converged, \
-                         ||r|| = {:.2e}·F_ref; not an equilibrium)",
-                        record.static_relative_residual.unwrap_or(f64::NAN)
-                    )
-                }
-                _ => String::new(),
-            };
-            eprintln!(
-                "interrupted at t = {} s{partial}: {} output steps kept in {}",
-                record.last.as_ref().map(|r| r.t).unwrap_or(0.0),
-                files.steps,
-                files.pvd.display()
-            );
+            eprintln!("{}", record.interrupted_text(&files));
             Ok(Ending::Interrupted)
         }
         Ending::Failed => Err(anyhow::Error::from(result.err().unwrap_or_else(|| {
@@ -179,62 +158,4 @@ pub fn run_scene(
             )
         }),
     }
-}
-
-/// Says how often the step control halved the step, and why (docs/theory/fem.md#step-control).
-fn print_step_control(r: &RunRecord) {
-    let Some(c) = &r.step_control else { return };
-    if c.halvings == 0 {
-        return;
-    }
-    let reasons: Vec<String> = c
-        .reasons
-        .iter()
-        .map(|(why, n)| format!("{n}× {why}"))
-        .collect();
-    eprintln!(
-        "note: the time step was halved {} times (smallest {:.3e} s; {}) and grown back {} times; \
-         run.json lists them under step_control",
-        c.halvings,
-        c.smallest_dt,
-        reasons.join(", "),
-        c.regrowths
-    );
-}
-
-fn print_final(files: &Written, r: &RunRecord) {
-    if let Some(last) = &r.last {
-        println!(
-            "done: t = {} s, net force = [{:.1}, {:.1}, {:.1}] N, reaction = [{:.1}, {:.1}, {:.1}] N, volume ratio {}",
-            last.t,
-            last.net_force[0],
-            last.net_force[1],
-            last.net_force[2],
-            last.reaction[0],
-            last.reaction[1],
-            last.reaction[2],
-            // The ratio is 0 only where there is no enclosed volume to compare with.
-            if last.volume_ratio > 0.0 {
-                format!("{:.4}", last.volume_ratio)
-            } else {
-                "n/a (no closed net)".to_string()
-            }
-        );
-    }
-    println!(
-        "{} output steps in {}; wall time {:.2} s{}",
-        files.steps,
-        files.dir.display(),
-        r.wall,
-        if r.steps > 0 {
-            format!(
-                ", {} dynamic steps, {:.2} ms per step, {:.2} Newton iterations per step",
-                r.steps,
-                1e3 * r.dyn_wall / r.steps as f64,
-                r.iterations as f64 / r.steps as f64
-            )
-        } else {
-            String::new()
-        }
-    );
 }

@@ -1,5 +1,5 @@
 //! `aqua sweep cases.toml`: the load cases of a case file ([`aqua_study::sweep`]), run on this
-//! machine (`--local`, N child processes at a time on a rayon pool), or handed to GNU parallel
+//! machine (`--local`, N child processes at a time: [`aqua_study::local_runner`]), or handed to GNU parallel
 //! (`--emit parallel`) or a Slurm job array (`--emit slurm`); `--case K` runs one case and is
 //! what every engine calls. Without a mode it lists the cases.
 
@@ -7,10 +7,9 @@ use crate::commands::run::run_scene;
 use crate::{InputError, interrupted};
 use anyhow::Context;
 use aqua_sim::Ending;
+use aqua_study::local_runner;
 use aqua_study::sweep::{CaseRecord, Sweep};
-use rayon::prelude::*;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// Where the emitted commands go.
@@ -194,39 +193,21 @@ fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
     }
 }
 
-/// Runs every case as its own `aqua sweep --case K` process, `jobs` at a time; a failed case
-/// does not stop the others. Each case's output goes to `case_NNNN/aqua.log`.
+/// Runs every case as its own `aqua sweep --case K` process, `jobs` at a time
+/// ([`aqua_study::local_runner`]); prints each case's status and the tally.
 fn run_local(sweep: &Sweep, jobs: usize) -> anyhow::Result<()> {
     if jobs == 0 {
         return Err(InputError::new("--jobs 0: run at least one case at a time").into());
     }
     let exe = std::env::current_exe().context("finding the aqua executable")?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .context("starting the worker threads")?;
     let n = sweep.cases.len();
     let t0 = Instant::now();
     eprintln!("{n} cases, {jobs} at a time, into {}", sweep.out.display());
-    let outcomes: Vec<String> = pool.install(|| {
-        sweep
-            .cases
-            .par_iter()
-            .with_max_len(1)
-            .map(|c| {
-                if interrupted() {
-                    return "not run".to_string();
-                }
-                let status = run_child(&exe, sweep, c.index);
-                eprintln!("case {} of {n} ({}): {status}", c.index, c.name);
-                status
-            })
-            .collect()
-    });
-    let failed = outcomes
-        .iter()
-        .filter(|s| !s.starts_with("completed"))
-        .count();
+    let outcomes = local_runner::run_local(sweep, &exe, jobs, &interrupted, &|c, status| {
+        eprintln!("case {} of {n} ({}): {status}", c.index, c.name)
+    })
+    .context("starting the worker threads")?;
+    let failed = local_runner::failed_count(&outcomes);
     eprintln!(
         "{} of {n} cases completed in {:.1} s; aqua collect {} merges them",
         n - failed,
@@ -243,52 +224,4 @@ fn run_local(sweep: &Sweep, jobs: usize) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-/// One case as a child process (which writes its folder's `aqua.log` and `case.json`
-/// itself); returns its status line.
-fn run_child(exe: &Path, sweep: &Sweep, k: usize) -> String {
-    let dir = sweep.case_dir(k);
-    // A case.json of an earlier sweep must not pass for this run's.
-    let _ = std::fs::remove_file(dir.join("case.json"));
-    let output = Command::new(exe)
-        .arg("sweep")
-        .arg(&sweep.file)
-        .arg("--case")
-        .arg(k.to_string())
-        .arg("--out")
-        .arg(&sweep.out)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .output();
-    let record: Option<CaseRecord> = std::fs::read_to_string(dir.join("case.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str(&t).ok());
-    // A case that ended before its own log was set up (or crashed): keep what it printed.
-    if record.is_none()
-        && let Ok(o) = &output
-    {
-        use std::io::Write;
-        let log = std::fs::create_dir_all(&dir).and_then(|_| {
-            std::fs::OpenOptions::new()
-                .create(true)
-                .append(true)
-                .open(dir.join("aqua.log"))
-        });
-        if let Ok(mut f) = log {
-            let _ = f.write_all(&o.stderr);
-        }
-    }
-    let status = output.map(|o| o.status);
-    match (status, record) {
-        (Ok(_), Some(r)) => format!(
-            "{} in {:.2} s{}",
-            r.status,
-            r.wall_time_s,
-            r.error.map(|e| format!(" ({e})")).unwrap_or_default()
-        ),
-        (Ok(s), None) => format!("failed: exit status {s}, no case.json"),
-        (Err(e), _) => format!("failed: cannot start {}: {e}", exe.display()),
-    }
 }
