@@ -67,6 +67,21 @@ pub enum FailureReason {
         /// The energy scale it is compared with [J].
         scale: f64,
     },
+    /// A converged step sampled the crest of a group's peak tension too coarsely for
+    /// `extreme_tolerance` (docs/theory/fem.md#extremes-to-a-tolerance).
+    #[error(
+        "group {group}'s peak tension would be resolved to {:.2} % only (extreme_tolerance {:.2} %)",
+        100.0 * error,
+        100.0 * tolerance
+    )]
+    ExtremeUnresolved {
+        /// Element group index.
+        group: usize,
+        /// Estimated relative crest error.
+        error: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
     /// No damped static step lowers the energy.
     #[error("no step lowers the energy (damping exhausted): the structure may have no equilibrium")]
     DampingExhausted,
@@ -115,6 +130,9 @@ pub enum FailureKind {
     /// [`FailureReason::EnergyCreated`].
     #[serde(rename = "the step created energy")]
     EnergyCreated,
+    /// [`FailureReason::ExtremeUnresolved`].
+    #[serde(rename = "a peak tension would not be resolved to extreme_tolerance")]
+    ExtremeUnresolved,
     /// [`FailureReason::DampingExhausted`].
     #[serde(rename = "no step lowers the energy")]
     DampingExhausted,
@@ -141,6 +159,7 @@ impl FailureKind {
             Self::ElementTurnedOver => "element … turned over in one step",
             Self::TwinesTurnedOver => "net triangle …: its … twines turned over in one step",
             Self::EnergyCreated => "the step created energy",
+            Self::ExtremeUnresolved => "a peak tension would not be resolved to extreme_tolerance",
             Self::DampingExhausted => "no step lowers the energy",
             Self::Interrupted => "interrupted",
             Self::Load => "load provider",
@@ -178,6 +197,7 @@ impl FailureReason {
             Self::ElementTurnedOver { .. } => FailureKind::ElementTurnedOver,
             Self::TwinesTurnedOver { .. } => FailureKind::TwinesTurnedOver,
             Self::EnergyCreated { .. } => FailureKind::EnergyCreated,
+            Self::ExtremeUnresolved { .. } => FailureKind::ExtremeUnresolved,
             Self::DampingExhausted => FailureKind::DampingExhausted,
             Self::Interrupted => FailureKind::Interrupted,
             Self::Load(_) => FailureKind::Load,
@@ -213,6 +233,9 @@ impl FailureReason {
                 "{step} (the member would pass through zero length within the step), or {damping}"
             ),
             Self::LineFront { .. } => format!("{step}, or the midpoint rule"),
+            Self::ExtremeUnresolved { .. } => {
+                "a larger `extreme_tolerance` or a smaller `dt_min`".into()
+            }
             Self::DampingExhausted => "check that the structure is held (supports, anchors, \
                  buoyancy against weight) and that the loads can be carried"
                 .into(),
@@ -267,6 +290,7 @@ mod tests {
             ElementTurnedOver,
             TwinesTurnedOver,
             EnergyCreated,
+            ExtremeUnresolved,
             DampingExhausted,
             Interrupted,
             Load,

@@ -137,8 +137,8 @@ mod system;
 pub use bending::Hinge;
 pub use dynamics::{
     DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies,
-    LinearSolverKind, LinearSolverStats, MassMatrix, Snapshot, StepControl, StepEvent, StepReport,
-    TensionResolution,
+    ExtremeResolution, LinearSolverKind, LinearSolverStats, MassMatrix, Snapshot, StepControl,
+    StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

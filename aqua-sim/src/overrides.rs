@@ -37,6 +37,7 @@ pub const ALIASES: &[(&str, &[&str])] = &[
     ("theta", &["analysis.dynamic.theta"]),
     ("output_interval", &["analysis.dynamic.output_interval"]),
     ("paraview_interval", &["analysis.dynamic.paraview_interval"]),
+    ("extreme_tolerance", &["analysis.dynamic.extreme_tolerance"]),
     (
         "element_length",
         &["cage.*.element_length", "panel.*.element_length"],

@@ -176,6 +176,7 @@ impl Plan {
         let d = &scene.analysis.dynamic;
         // Validated for every scheme, so that θ given with an explicit one is not ignored.
         let theta = theta(scene)?;
+        let extreme_tolerance = extreme_tolerance(scene)?;
         let integrator = match d.scheme.explicit() {
             None => {
                 let mut s = DynamicSettings::new(dt, t_end);
@@ -190,6 +191,7 @@ impl Plan {
                 s.reuse_factor = d.reuse_factor;
                 s.linear_solver = d.linear_solver;
                 s.line_relaxation = d.line_relaxation;
+                s.extreme_tolerance = extreme_tolerance;
                 s.midpoint = d.scheme == crate::scene::Scheme::Midpoint;
                 s.theta = theta;
                 Integrator::Hht(s)
@@ -290,6 +292,31 @@ fn theta(scene: &Scene) -> Result<f64> {
             ),
         )),
     }
+}
+
+/// The implicit schemes' `extreme_tolerance` (docs/theory/fem.md#extremes-to-a-tolerance),
+/// validated: a relative error in (0, 0.5), not with an explicit scheme (whose step is set by
+/// stability, not halved).
+fn extreme_tolerance(scene: &Scene) -> Result<Option<f64>> {
+    let d = &scene.analysis.dynamic;
+    let file = scene.path.display();
+    let Some(e) = d.extreme_tolerance else {
+        return Ok(None);
+    };
+    let why = if d.scheme.explicit().is_some() {
+        "only with scheme = \"hht\" or \"midpoint\" (an explicit scheme's step is set by \
+         stability)"
+    } else if !(e > 0.0 && e < 0.5) {
+        "valid is 0 < extreme_tolerance < 0.5, a relative error (e.g. 0.01)"
+    } else {
+        return Ok(Some(e));
+    };
+    Err(SimError::invalid(
+        &scene.path,
+        "analysis.dynamic.extreme_tolerance",
+        e,
+        format!("{file}: analysis.dynamic.extreme_tolerance = {e}: {why}"),
+    ))
 }
 
 /// Most nominal steps a dynamic run may take (t_end / dt; more is likely a unit mistake).

@@ -287,6 +287,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = time_step_warning(record) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = extremes_warning(record, &prep.built.group_names) {
+                    obs.diagnostic(&d);
+                }
                 r
             }
             Err(e) => Err(e),
@@ -408,6 +411,29 @@ fn time_step_warning(record: &RunRecord) -> Option<Diagnostic> {
             res.range[0],
             res.range[1],
             100.0 * res.error
+        ),
+    ))
+}
+
+/// A warning when `extreme_tolerance` could not be met: steps accepted at `dt_min` with a
+/// tension crest sampled more coarsely than the tolerance (docs/theory/fem.md#extremes-to-a-tolerance).
+fn extremes_warning(record: &RunRecord, group_names: &[String]) -> Option<Diagnostic> {
+    let r = record.step_control.as_ref()?.extremes.as_ref()?;
+    if r.unresolved_steps == 0 {
+        return None;
+    }
+    let group = r
+        .worst_group
+        .and_then(|g| group_names.get(g))
+        .map_or("?", String::as_str);
+    Some(Diagnostic::warning(
+        "fem/extremes-unresolved",
+        "dynamics",
+        format!(
+            "extreme_tolerance {:.2} % was not met in {} steps taken at dt_min: the largest              tension of `{group}` is uncertain by about {:.1} %; lower `dt_min` or accept a              larger tolerance",
+            100.0 * r.tolerance,
+            r.unresolved_steps,
+            100.0 * r.worst_unresolved
         ),
     ))
 }

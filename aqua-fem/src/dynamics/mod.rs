@@ -6,6 +6,7 @@
 //! coupling's save and restore (`snapshot.rs`).
 
 mod energy;
+mod extreme_control;
 mod hht;
 mod midpoint;
 mod newton;
@@ -15,6 +16,7 @@ mod snapshot;
 mod step_control;
 
 pub use energy::{ENERGY_GROWTH_TOL, Energies};
+pub use extreme_control::ExtremeResolution;
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
 pub use snapshot::Snapshot;
@@ -119,6 +121,8 @@ pub struct DynamicSolver<'m> {
     x_start: Vec<[f64; 3]>,
     /// The balance of the step the guard accepted (its outputs are in `trial`).
     guarded: Option<Balance>,
+    /// Extremes to a tolerance, when `extreme_tolerance` is set.
+    extremes: Option<extreme_control::ExtremeControl>,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -208,11 +212,22 @@ impl<'m> DynamicSolver<'m> {
             first_contraction: f64::NAN,
             full_newton: false,
             trial: Outputs::new(model),
-            control: StepControl::default(),
+            control: StepControl {
+                extremes: settings_scheme
+                    .extreme_tolerance
+                    .map(|tolerance| ExtremeResolution {
+                        tolerance,
+                        ..Default::default()
+                    }),
+                ..StepControl::default()
+            },
             kinetic_free: 0.0,
             scheme: Scheme::new(&settings_scheme, n),
             x_start: Vec::new(),
             guarded: None,
+            extremes: settings_scheme
+                .extreme_tolerance
+                .map(|tol| extreme_control::ExtremeControl::new(model, tol)),
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for &gd in &s.sys.dof_of_free {
@@ -242,6 +257,9 @@ impl<'m> DynamicSolver<'m> {
         s.sys
             .evaluate(model, provider, &s.state.x, &s.state.v, &s.state.a, &o)?;
         s.accept_bookkeeping(0.0, true);
+        if let Some(c) = s.extremes.as_mut() {
+            c.accept(model, &s.outputs.tension, &s.state.x, &s.state.v);
+        }
         s.e0 = s.energies.kinetic + s.energies.strain;
         s.x_start = s.state.x.clone();
         Ok(s)

@@ -72,6 +72,11 @@ pub struct DynamicSettings {
     /// (docs/theory/fem.md#line-relaxation-hht).
     #[serde(default = "yes")]
     pub line_relaxation: bool,
+    /// Relative tolerance on each element group's largest tension: a step that samples the
+    /// crest of a group's peak tension too coarsely for it is halved, down to `dt_min`
+    /// (docs/theory/fem.md#extremes-to-a-tolerance). Default none (no such control).
+    #[serde(default)]
+    pub extreme_tolerance: Option<f64>,
 }
 
 /// The factorisation of the dynamic Newton systems.
@@ -124,6 +129,7 @@ impl DynamicSettings {
             theta: DEFAULT_THETA,
             linear_solver: LinearSolverKind::Symmetric,
             line_relaxation: true,
+            extreme_tolerance: None,
         }
     }
 
@@ -195,6 +201,15 @@ impl DynamicSettings {
         }
         if !(self.max_strain > 0.0) {
             return Err(invalid("max_strain", self.max_strain, "> 0"));
+        }
+        if let Some(e) = self.extreme_tolerance
+            && !(e > 0.0 && e < 0.5)
+        {
+            return Err(invalid(
+                "extreme_tolerance",
+                e,
+                "0 < extreme_tolerance < 0.5 (a relative error, e.g. 0.01)",
+            ));
         }
         if !(0.5..=1.0).contains(&self.theta) {
             return Err(invalid(

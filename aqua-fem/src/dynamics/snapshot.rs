@@ -33,6 +33,7 @@ pub struct Snapshot {
     kinetic_free: f64,
     rod_frames: Vec<EdgeFrame>,
     t_end: f64,
+    extremes: Option<super::extreme_control::ExtremeControl>,
 }
 
 impl Snapshot {
@@ -72,6 +73,7 @@ impl DynamicSolver<'_> {
             kinetic_free: self.kinetic_free,
             rod_frames: self.sys.rod_frames.clone(),
             t_end: self.st.t_end,
+            extremes: self.extremes.clone(),
         }
     }
 
@@ -104,6 +106,7 @@ impl DynamicSolver<'_> {
         self.kinetic_free = s.kinetic_free;
         self.sys.rod_frames.clone_from(&s.rod_frames);
         self.st.t_end = s.t_end;
+        self.extremes.clone_from(&s.extremes);
         self.clamp = false;
         self.full_newton = false;
         self.guarded = None;

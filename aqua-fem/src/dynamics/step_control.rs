@@ -61,6 +61,10 @@ pub struct StepControl {
     /// (docs/theory/fem.md#time-step-error-indicator).
     #[serde(skip)]
     pub peak_tensions: Vec<f64>,
+    /// What the extreme control did, with `extreme_tolerance` set
+    /// (docs/theory/fem.md#extremes-to-a-tolerance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extremes: Option<super::ExtremeResolution>,
 }
 
 impl StepControl {
@@ -196,15 +200,15 @@ impl DynamicSolver<'_> {
                 }
                 landed = true;
             }
-            let outcome = self
-                .attempt(provider, h)
-                .and_then(|ok| match self.guard(h) {
+            let outcome = self.attempt(provider, h).and_then(|ok| {
+                match self.guard(h).or_else(|| self.extreme_guard(h, dt_min)) {
                     Some(reason) => Err(Attempt {
                         reason,
                         history: ok.1.clone(),
                     }),
                     None => Ok(ok),
-                });
+                }
+            });
             match outcome {
                 Ok((iters, hist)) => {
                     if hist.len() >= 2 && hist[0] > 0.0 {
@@ -221,6 +225,14 @@ impl DynamicSolver<'_> {
                     self.state.t = if landed { target } else { t + h };
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
+                    if let Some(c) = self.extremes.as_mut() {
+                        c.accept(
+                            self.model,
+                            &self.outputs.tension,
+                            &self.state.x,
+                            &self.state.v,
+                        );
+                    }
                     // Easy step: few factorisations (= iterations with full Newton).
                     if self.attempt_factorisations <= 4 {
                         self.good_steps += 1;
@@ -255,7 +267,9 @@ impl DynamicSolver<'_> {
                     retries += 1;
                     self.good_steps = 0;
                     self.lu_valid = false;
-                    if !self.full_newton && self.attempt_stale_solves > 0 {
+                    // A coarse crest is the step's length, not its solve: straight to halving.
+                    let resolved_solve = fail.reason.kind() == FailureKind::ExtremeUnresolved;
+                    if !resolved_solve && !self.full_newton && self.attempt_stale_solves > 0 {
                         // Modified Newton failed: retry the same step with full Newton first.
                         self.full_newton = true;
                         continue;
@@ -265,7 +279,8 @@ impl DynamicSolver<'_> {
                     let scheme = &self.scheme;
                     let matters = |c: &CableEval| scheme.clamp_matters(c);
                     let sys = &self.sys;
-                    if !self.clamp
+                    if !resolved_solve
+                        && !self.clamp
                         && (sys.cable.iter().any(matters) || sys.net_twines().any(matters))
                     {
                         // Retry the same step with T ≥ 0 in the slack elements' geometric term.

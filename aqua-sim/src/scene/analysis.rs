@@ -136,6 +136,11 @@ pub struct DynamicSpec {
     pub linear_solver: aqua_fem::LinearSolverKind,
     /// Relax the free lines inside each Newton iteration (docs/theory/fem.md#line-relaxation).
     pub line_relaxation: bool,
+    /// Implicit schemes: relative tolerance on each element group's largest tension; steps
+    /// that sample a tension crest too coarsely for it are halved, down to `dt_min`
+    /// (docs/theory/fem.md#extremes-to-a-tolerance). Default none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extreme_tolerance: Option<f64>,
 }
 
 /// The nominal HHT step when the scene gives none [s].
@@ -168,6 +173,7 @@ impl Default for DynamicSpec {
             reuse_factor: hht.reuse_factor,
             linear_solver: hht.linear_solver,
             line_relaxation: hht.line_relaxation,
+            extreme_tolerance: hht.extreme_tolerance,
         }
     }
 }

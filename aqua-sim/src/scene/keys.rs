@@ -522,6 +522,7 @@ impl Keys for DynamicSpec {
             "reuse_factor",
             "linear_solver",
             "line_relaxation",
+            "extreme_tolerance",
         ])
     }
 }
