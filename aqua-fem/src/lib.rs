@@ -162,5 +162,5 @@ pub use seabed::{
 pub use state::{Outputs, State};
 pub use statics::{
     StaticControl, StaticProgress, StaticReport, StaticSettings, StaticSolution, solve_static,
-    solve_static_observed,
+    solve_static_from, solve_static_observed,
 };

@@ -333,6 +333,7 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         wave_points: ncomp * built.model.n_nodes(),
         lines_only,
         statics: kind != AnalysisKind::Dynamic,
+        mesh_sequence: prep.plan.statics.mesh_sequence,
         driving,
         steps,
         t_end,

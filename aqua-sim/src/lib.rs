@@ -36,6 +36,7 @@ pub mod error;
 pub mod estimate;
 pub mod extremes;
 mod files;
+mod mesh_sequence;
 pub mod net_triangles;
 pub mod overrides;
 pub mod pipe_stress;

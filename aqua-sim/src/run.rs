@@ -13,7 +13,7 @@ use crate::plan::{Integrator, Prepared};
 use crate::post::{SummaryRow, net_force_and_wake, total_volume};
 use crate::provider::WaterLoads;
 use crate::scene::AnalysisKind;
-use crate::solvers::{Stepper, start_integrator, static_equilibrium};
+use crate::solvers::{Stepper, start_integrator, static_equilibrium_from};
 use aqua_env::Phase;
 use aqua_fem::{
     Energies, LinearSolverStats, Outputs, State, StaticControl, StaticProgress, StepControl,
@@ -58,6 +58,9 @@ pub struct RunRecord {
     pub iterations: usize,
     /// Newton iterations of the static solve.
     pub static_iterations: usize,
+    /// Newton iterations of the coarser static solves of a mesh sequence, coarsest first
+    /// (`analysis.static.mesh_sequence`; empty without one).
+    pub static_sequence_iterations: Vec<usize>,
     /// ‖r‖/F_ref of every static Newton iterate.
     pub static_residuals: Vec<f64>,
     /// Load factor of the static state written (1 = full load; below 1 only when the solve
@@ -227,13 +230,24 @@ impl<'p> Simulation<'p> {
                     StaticControl::Continue
                 }
             };
-            let stat = static_equilibrium(
+            // A mesh sequence first, if asked for (docs/theory/fem.md#mesh-sequencing).
+            let seq = if plan.statics.mesh_sequence > 0 {
+                crate::mesh_sequence::sequenced_start(prep, &mut progress)?
+            } else {
+                Default::default()
+            };
+            let stat = static_equilibrium_from(
                 model,
                 &prep.built.mesh,
                 &mut self.loads,
                 &plan.statics,
+                seq.start.as_deref(),
                 &mut progress,
             )?;
+            for d in Diagnostic::warnings("fem/statics", "statics", &seq.warnings) {
+                obs.diagnostic(&d);
+            }
+            record.static_sequence_iterations = seq.iterations;
             for d in Diagnostic::warnings("fem/statics", "statics", &stat.report.warnings) {
                 obs.diagnostic(&d);
             }

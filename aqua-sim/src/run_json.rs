@@ -44,6 +44,7 @@ pub(crate) fn run_json(
         "steps": record.steps,
         "newton_iterations": record.iterations,
         "static_newton_iterations": record.static_iterations,
+        "static_sequence_iterations": record.static_sequence_iterations,
         "static_residual_history": &record.static_residuals,
         "static_load_factor": record.static_load_factor,
         "static_converged": record.static_converged,

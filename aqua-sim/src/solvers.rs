@@ -8,7 +8,7 @@ use crate::provider::WaterLoads;
 use aqua_fem::{
     DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs, Snapshot,
     State, StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl, StepReport,
-    solve_static_observed,
+    solve_static_from,
 };
 use aqua_mesh::{Mesh, ObjectKind};
 
@@ -23,7 +23,20 @@ pub fn static_equilibrium(
     settings: &StaticSettings,
     progress: &mut dyn FnMut(&StaticProgress) -> StaticControl,
 ) -> Result<StaticSolution> {
-    solve_static_observed(model, loads, settings, progress).map_err(|e| {
+    static_equilibrium_from(model, mesh, loads, settings, None, progress)
+}
+
+/// [`static_equilibrium`] from the node positions `start` [m] (`None`: as built), e.g. a
+/// coarser mesh's equilibrium carried to this one (crate::mesh_sequence).
+pub(crate) fn static_equilibrium_from(
+    model: &Model,
+    mesh: &Mesh,
+    loads: &mut WaterLoads,
+    settings: &StaticSettings,
+    start: Option<&[[f64; 3]]>,
+    progress: &mut dyn FnMut(&StaticProgress) -> StaticControl,
+) -> Result<StaticSolution> {
+    solve_static_from(model, loads, settings, start, progress).map_err(|e| {
         let nodes: Vec<usize> = match &e {
             FemError::Drifting { nodes, .. }
             | FemError::Unconstrained { nodes, .. }

@@ -12,7 +12,7 @@ pub use settings::{StaticControl, StaticProgress, StaticReport, StaticSettings, 
 use support::{check_held_horizontally, check_held_up, check_supported, parts};
 
 use crate::cable;
-use crate::error::{FemError, Result};
+use crate::error::{FemError, Result, invalid};
 use crate::failure::FailureReason;
 use crate::loads::LoadProvider;
 use crate::model::Model;
@@ -178,7 +178,33 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
     settings: &StaticSettings,
     observer: &mut dyn FnMut(&StaticProgress) -> StaticControl,
 ) -> Result<StaticSolution> {
+    solve_static_from(model, provider, settings, None, observer)
+}
+
+/// [`solve_static_observed`] from the node positions `start` [m] instead of the as-built
+/// geometry (e.g. the equilibrium of a coarser mesh carried to this one,
+/// docs/theory/fem.md#mesh-sequencing); constrained DOFs keep their prescribed positions.
+/// `None` starts from the as-built geometry.
+pub fn solve_static_from<P: LoadProvider + ?Sized>(
+    model: &Model,
+    provider: &mut P,
+    settings: &StaticSettings,
+    start: Option<&[[f64; 3]]>,
+    observer: &mut dyn FnMut(&StaticProgress) -> StaticControl,
+) -> Result<StaticSolution> {
     settings.validate()?;
+    if let Some(x0) = start {
+        if x0.len() != model.n_nodes() {
+            return Err(invalid(
+                "static start positions (nodes)",
+                x0.len() as f64,
+                "one position per node of the model",
+            ));
+        }
+        if x0.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(FemError::NonFinite("static start positions".into()));
+        }
+    }
     let part = parts(model, &*provider);
     check_supported(model, &*provider, &part)?;
     check_held_up(model, &*provider, &part)?;
@@ -197,7 +223,7 @@ pub fn solve_static_observed<P: LoadProvider + ?Sized>(
         prov: provider,
         sys,
         st: settings.clone(),
-        x: model.nodes().to_vec(),
+        x: start.map_or_else(|| model.nodes().to_vec(), <[[f64; 3]]>::to_vec),
         zero: vec![[0.0; 3]; n],
         d_node: node_axial_stiffness(model),
         f_frozen: vec![0.0; nf],

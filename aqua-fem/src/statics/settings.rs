@@ -31,7 +31,16 @@ pub struct StaticSettings {
     pub time: f64,
     /// Form missing water-load position derivatives by finite differences. Default true.
     pub fd_position_jacobian: bool,
+    /// Coarser meshes solved first, each the start of the next (mesh sequencing): 0 (default)
+    /// starts from the as-built geometry, k solves the scene with its nets' element length
+    /// doubled k times first. Read by the scene runner (aqua-sim), which builds the coarser
+    /// models; the solver itself takes a start shape (`solve_static_from`;
+    /// docs/theory/fem.md#mesh-sequencing). At most `MAX_MESH_SEQUENCE`.
+    pub mesh_sequence: usize,
 }
+
+/// Largest `mesh_sequence`: 2⁴ = 16 times the element length is coarser than any net needs.
+pub const MAX_MESH_SEQUENCE: usize = 4;
 
 impl Default for StaticSettings {
     fn default() -> Self {
@@ -45,6 +54,7 @@ impl Default for StaticSettings {
             watchdog: true,
             time: 0.0,
             fd_position_jacobian: true,
+            mesh_sequence: 0,
         }
     }
 }
@@ -69,6 +79,13 @@ impl StaticSettings {
         }
         if !(self.stabilisation.is_finite() && self.stabilisation >= 0.0) {
             return Err(invalid("static stabilisation", self.stabilisation, ">= 0"));
+        }
+        if self.mesh_sequence > MAX_MESH_SEQUENCE {
+            return Err(invalid(
+                "static mesh_sequence",
+                self.mesh_sequence as f64,
+                format!("0 ..= {MAX_MESH_SEQUENCE}"),
+            ));
         }
         if !self.time.is_finite() {
             return Err(invalid("static time [s]", self.time, "finite"));

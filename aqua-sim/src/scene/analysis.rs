@@ -36,6 +36,7 @@ struct StaticKeys {
     stabilisation: f64,
     line_search: bool,
     watchdog: bool,
+    mesh_sequence: usize,
     #[serde(skip)]
     time: f64,
     #[serde(skip)]

@@ -496,6 +496,7 @@ impl Keys for StaticSettings {
             "stabilisation",
             "line_search",
             "watchdog",
+            "mesh_sequence",
         ])
     }
 }
