@@ -15,6 +15,7 @@ mod snapshot;
 mod step_control;
 
 pub use energy::{ENERGY_GROWTH_TOL, Energies};
+pub(crate) use hht::{HhtForces, use_hht_force};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
 pub use snapshot::Snapshot;
