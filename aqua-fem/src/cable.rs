@@ -126,7 +126,7 @@ pub(crate) fn evaluate(
 /// Strain energy ½·s·EA·ε²·L0 [J].
 #[inline]
 /// Strain energy W(l) [J] of element `e` at length l.
-fn energy_at_length(e: &Cable, l: f64) -> f64 {
+pub(crate) fn energy_at_length(e: &Cable, l: f64) -> f64 {
     strain_energy(e, (l - e.l0) / e.l0)
 }
 
@@ -182,6 +182,14 @@ pub(crate) fn use_secant_tension(e: &Cable, l0: f64, d1: [f64; 3], out: &mut Cab
                 -km * u[i] * u[j] + u[i] * (2.0 * dt_dl1 * u1[j] + t_alg / lm * u[j]) + d / lm * p;
         }
     }
+}
+
+/// The elastic axial force W′(l) = s·EA·ε [N] of element `e` at length l (no damping).
+#[inline]
+pub(crate) fn elastic_tension(e: &Cable, l: f64) -> f64 {
+    let eps = (l - e.l0) / e.l0;
+    let s = if eps > 0.0 { 1.0 } else { e.rc };
+    s * e.ea * eps
 }
 
 pub(crate) fn strain_energy(e: &Cable, strain: f64) -> f64 {

@@ -413,7 +413,7 @@ impl Ctx<'_, '_> {
 
     /// Force on node b and Jacobian block of element `e` at end positions `x`, as
     /// `System::evaluate` and `assemble_jacobian` form them (NaN force if degenerate).
-    fn linear(&self, e: &Cable, x: &[[f64; 3]]) -> ElementLinear {
+    fn linear(&self, ie: usize, e: &Cable, x: &[[f64; 3]]) -> ElementLinear {
         let kin = self.kin;
         let (xa, xb) = (x[e.a], x[e.b]);
         let (xea, vea) = self.eval_state(e.a, xa);
@@ -422,6 +422,10 @@ impl Ctx<'_, '_> {
         if kin.scheme.force_evaluation() == ForceEvaluation::DiscreteGradient {
             let l0 = norm(sub(kin.xn[e.b], kin.xn[e.a]));
             cable::use_secant_tension(e, l0, sub(xb, xa), &mut ev);
+        }
+        if let Some(f) = kin.scheme.hht_forces() {
+            let d0 = sub(kin.xn[e.b], kin.xn[e.a]);
+            crate::dynamics::use_hht_force(e, d0, &f.cable[ie], &f.w, &mut ev);
         }
         let mut blk = [[0.0; 3]; 3];
         for (i, row) in blk.iter_mut().enumerate() {
@@ -504,7 +508,7 @@ impl Ctx<'_, '_> {
         now.clear();
         for (j, &ie) in line.elems.iter().enumerate() {
             let e = &self.elements[ie];
-            let lin = self.linear(e, x);
+            let lin = self.linear(ie, e, x);
             if lin.force_b.iter().any(|f| !f.is_finite()) {
                 return false;
             }

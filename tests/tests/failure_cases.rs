@@ -34,7 +34,7 @@ fn max_of(out: &Path, prefix: &str) -> f64 {
 /// unstretched from rest, trapezoidal rule (α = 0) at Δt = T/2. The mass oscillates 0.25 m about
 /// its equilibrium and never reaches the anchor; the predictor used to carry it through the
 /// anchor onto the mirror branch (an inverted bar at its rest length), and the run completed
-/// there. Bound: the largest tension of the true motion is 2·m·g.
+/// there. Bound: the largest tension of the true motion is 2·m·g, and the bar never turns over.
 #[test]
 fn a_bar_never_turns_over_through_its_anchor() {
     let d = scratch("mirror");
@@ -56,14 +56,18 @@ fn a_bar_never_turns_over_through_its_anchor() {
     );
     let rj = run_json(&out);
     let control = &rj["step_control"];
-    assert!(control["halvings"].as_u64().unwrap() >= 1, "{control}");
-    assert!(
-        control["events"][0]["reason"]
-            .as_str()
-            .unwrap()
-            .contains("turned over"),
-        "{control}"
-    );
+    // The guard rejects a turned-over bar, so a completed run never turned over; with the
+    // energy-consistent HHT-α force (docs/theory/fem.md#energy-consistent-hht-alpha) Newton
+    // stays on the physical branch without it, and any halving must be the guard's.
+    if control["halvings"].as_u64().unwrap() > 0 {
+        assert!(
+            control["events"][0]["reason"]
+                .as_str()
+                .unwrap()
+                .contains("turned over"),
+            "{control}"
+        );
+    }
     // Every Newton iteration solved one system, with a fresh or a kept factor, or was a
     // convergence check with the last factor.
     let ls = &rj["linear_solver"];

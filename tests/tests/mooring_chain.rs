@@ -164,7 +164,9 @@ fn surged_chain(t_end: f64) -> String {
 /// 160-segment chain, where each step's first updates leave remainders far above the Newton
 /// tolerance, the symmetric refinement stops at a tenth of the predicted remainder. It must take
 /// fewer sweeps per Newton iteration than a solve to 1 % of tol does (3.9 on this run) and no
-/// more Newton iterations than exact LU solves, give or take 2 %.
+/// more Newton iterations than exact LU solves, give or take 2 %. (HHT-α's energy-consistent
+/// cable tangent is not symmetric, by O(Δd): 3.6 sweeps per iteration against 3.5 before it,
+/// docs/theory/fem.md#energy-consistent-hht-alpha.)
 #[test]
 fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
     let dir = scratch("chain-forcing");
@@ -187,7 +189,7 @@ fn the_surged_chain_solves_its_updates_no_tighter_than_newton_needs() {
         its(&lu)
     );
     assert!(
-        sweeps <= 3.5 * its(&sym),
+        sweeps <= 3.7 * its(&sym),
         "{sweeps} refinement sweeps for {} iterations",
         its(&sym)
     );

@@ -158,6 +158,27 @@ impl DynamicSolver<'_> {
         self.last_reaction.copy_from_slice(&self.outputs.reaction);
     }
 
+    /// The change of the scheme's own energy over the attempted step (x_n → x1, a_n → a1),
+    /// which the step's equations trade with E (docs/theory/fem.md#energy-consistent-hht-alpha).
+    fn algorithmic_energy_change(&mut self, h: f64) -> f64 {
+        let model = self.model;
+        let consistent = self.st.mass_matrix == MassMatrix::Consistent;
+        let mut ama = [0.0; 2];
+        for (k, a) in [&self.state.a, &self.a1].into_iter().enumerate() {
+            crate::system::mul_mass(model, consistent, a, &mut self.mv);
+            for &gd in &self.sys.dof_of_free {
+                let (i, c) = (gd / 3, gd % 3);
+                let mut m = self.mv[i][c];
+                for l in 0..3 {
+                    m += self.sys.added[i][c][l] * a[i][l];
+                }
+                ama[k] += a[i][c] * m;
+            }
+        }
+        self.scheme
+            .algorithmic_energy_change(model, &self.x1, h, (ama[0], ama[1]))
+    }
+
     /// Why a converged attempt (x1, v1 with `self.sys` evaluated there) must still be
     /// rejected (docs/theory/fem.md#step-control): an element that resists compression or was
     /// taut turned over in one step (the true motion would pass through zero length), or the
@@ -195,9 +216,11 @@ impl DynamicSolver<'_> {
         // support's business (a table motion may jump its velocity).
         let e_old = self.kinetic_free + self.energies.strain;
         let e_new = b.kinetic_free + b.strain;
+        let alg = self.algorithmic_energy_change(h);
         let created = e_new - e_old + 0.5 * (self.power_prev + b.power) * h
             - b.external_work
-            - b.support_work_static;
+            - b.support_work_static
+            + alg;
         let scale = e_old.max(e_new) + b.work_magnitude + self.f_floor * model.mean_length;
         if created > ENERGY_GROWTH_TOL * scale {
             return Some(FailureReason::EnergyCreated { created, scale });

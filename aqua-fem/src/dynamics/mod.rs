@@ -17,6 +17,7 @@ mod step_control;
 
 pub use energy::{ENERGY_GROWTH_TOL, Energies};
 pub use extreme_control::ExtremeResolution;
+pub(crate) use hht::{HhtForces, use_hht_force};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
 pub use snapshot::Snapshot;

@@ -47,6 +47,7 @@ impl DynamicSolver<'_> {
         let model = self.model;
         let t1 = self.state.t + h;
         let n = model.n_nodes();
+        self.scheme.begin(model, &self.state.x, self.state.t);
         // Predictor.
         for i in 0..n {
             for k in 0..3 {

@@ -117,7 +117,7 @@ impl Scheme {
     ) -> Result<()> {
         let (xn, x1, v1, a1) = step;
         match self {
-            Self::Hht(_) => sys.evaluate(model, provider, x1, v1, a1, o),
+            Self::Hht(s) => s.evaluate(sys, model, provider, x1, v1, a1, o),
             Self::Midpoint(s) => s.evaluate(sys, model, provider, xn, x1, o),
         }
     }
@@ -133,8 +133,56 @@ impl Scheme {
         o_end: &EvalOptions,
     ) -> Result<()> {
         match self {
-            Self::Hht(_) => Ok(()),
+            Self::Hht(s) => {
+                s.finish(sys, model);
+                Ok(())
+            }
             Self::Midpoint(s) => s.finish(sys, model, provider, end, o_end),
+        }
+    }
+
+    /// The members' memory of the energy-consistent HHT-α (docs/theory/fem.md#energy-consistent-hht-alpha).
+    pub(crate) fn hht_forces(&self) -> Option<&super::hht::HhtForces> {
+        match self {
+            Self::Hht(s) => s.forces(),
+            Self::Midpoint(_) => None,
+        }
+    }
+
+    /// The change of the scheme's own energy over the step of h to x1 (HHT-α; 0 for the
+    /// midpoint rule, whose discrete gradient leaves none), given a_nᵀMa_n and
+    /// a_{n+1}ᵀMa_{n+1} [J].
+    pub(crate) fn algorithmic_energy_change(
+        &self,
+        model: &Model,
+        x1: &[[f64; 3]],
+        h: f64,
+        ama: (f64, f64),
+    ) -> f64 {
+        match self {
+            Self::Hht(s) => s.algorithmic_energy_change(model, x1, h, ama),
+            Self::Midpoint(_) => 0.0,
+        }
+    }
+
+    /// Puts back the members' memory of a snapshot (HHT-α).
+    pub(crate) fn restore_hht_forces(&mut self, f: &super::hht::HhtForces) {
+        if let Self::Hht(s) = self {
+            s.restore_forces(f);
+        }
+    }
+
+    /// Before the attempts of a step from the state (x_n, t_n).
+    pub(crate) fn begin(&mut self, model: &Model, xn: &[[f64; 3]], t: f64) {
+        if let Self::Hht(s) = self {
+            s.begin(model, xn, t);
+        }
+    }
+
+    /// After a step was accepted with the end state x1 at time t1.
+    pub(crate) fn accept(&mut self, model: &Model, x1: &[[f64; 3]], t1: f64) {
+        if let Self::Hht(s) = self {
+            s.accept(model, x1, t1);
         }
     }
 

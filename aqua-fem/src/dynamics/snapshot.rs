@@ -1,6 +1,7 @@
 //! A saved state of the implicit integrator (a coupling's save and restore): everything the
 //! next step reads — the state, the previous step's internal forces and loads (the scheme's
-//! residual and the energy ledger use them), the step control, the rods' reference frames —
+//! residual and the energy ledger use them), the step control, the rods' reference frames, the
+//! members' memory of the energy-consistent HHT-α —
 //! so that restore → step repeats save → step bit for bit (docs/theory/fem.md#coupling).
 //! Factorisations are not saved: both save and restore ask for a fresh one, so the step after
 //! either starts from the same linear algebra. A checkpoint ([`DynamicSolver::checkpoint`]) is
@@ -8,7 +9,7 @@
 //! of peak tensions (the step's resolution indicator) is cut back to the saved length, not
 //! copied.
 
-use super::{DynamicSolver, Energies, StepControl};
+use super::{DynamicSolver, Energies, HhtForces, StepControl};
 use crate::error::{FemError, Result};
 use crate::rod::EdgeFrame;
 use crate::state::{Outputs, State};
@@ -32,6 +33,7 @@ pub struct Snapshot {
     peak_len: usize,
     kinetic_free: f64,
     rod_frames: Vec<EdgeFrame>,
+    hht: Option<HhtForces>,
     t_end: f64,
     extremes: Option<super::extreme_control::ExtremeControl>,
 }
@@ -72,6 +74,7 @@ impl DynamicSolver<'_> {
             peak_len: self.control.peak_tensions.len(),
             kinetic_free: self.kinetic_free,
             rod_frames: self.sys.rod_frames.clone(),
+            hht: self.scheme.hht_forces().cloned(),
             t_end: self.st.t_end,
             extremes: self.extremes.clone(),
         }
@@ -105,6 +108,9 @@ impl DynamicSolver<'_> {
         self.control.peak_tensions = peaks;
         self.kinetic_free = s.kinetic_free;
         self.sys.rod_frames.clone_from(&s.rod_frames);
+        if let Some(f) = &s.hht {
+            self.scheme.restore_hht_forces(f);
+        }
         self.st.t_end = s.t_end;
         self.extremes.clone_from(&s.extremes);
         self.clamp = false;

@@ -223,6 +223,7 @@ impl DynamicSolver<'_> {
                     std::mem::swap(&mut self.state.v, &mut self.v1);
                     std::mem::swap(&mut self.state.a, &mut self.a1);
                     self.state.t = if landed { target } else { t + h };
+                    self.scheme.accept(self.model, &self.state.x, self.state.t);
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
                     if let Some(c) = self.extremes.as_mut() {

@@ -49,6 +49,7 @@ impl System {
         let a_k = if o.dynamic { o.rayleigh.1 } else { 0.0 };
         let clamp = o.clamp_geometric;
         let secant = self.secant.as_ref();
+        let hht = self.hht.as_ref();
         let kernel = |(i, out): (usize, &mut CableEval)| {
             let e = &elements[i];
             *out = cable::evaluate(
@@ -64,6 +65,10 @@ impl System {
             if let Some((x0, x1)) = secant {
                 let l0 = norm(sub(x0[e.b], x0[e.a]));
                 cable::use_secant_tension(e, l0, sub(x1[e.b], x1[e.a]), out);
+            }
+            if let Some(f) = hht {
+                let d0 = sub(f.xn[e.b], f.xn[e.a]);
+                crate::dynamics::use_hht_force(e, d0, &f.cable[i], &f.w, out);
             }
         };
         if elements.len() >= PAR_THRESHOLD {

@@ -291,6 +291,7 @@ impl System {
             n_refinement_sweeps: 0,
             load_scratch: Default::default(),
             secant: None,
+            hht: None,
         })
     }
 

@@ -147,6 +147,10 @@ pub(crate) struct System {
     /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
     /// in the configuration passed to `evaluate` (the midpoint).
     pub secant: Option<StepEnds>,
+    /// When set, the cables' and twines' elastic force is the energy-consistent step force of
+    /// HHT-α from these start positions and memories, the system being evaluated at the
+    /// step's end (docs/theory/fem.md#energy-consistent-hht-alpha).
+    pub hht: Option<crate::dynamics::HhtForces>,
 }
 
 pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -84,15 +84,26 @@ impl System {
             .secant
             .as_ref()
             .map(|(x0, x1)| (x0.as_slice(), x1.as_slice()));
-        let kernel = |(t, out): (&NetTriangle, &mut NetTriangleEval)| {
+        let hht = self.hht.as_ref();
+        let kernel = |(i, (t, out)): (usize, (&NetTriangle, &mut NetTriangleEval))| {
             net_triangle::evaluate(t, x, v, damping, a_k * t.twine.ea, clamp, secant, out);
+            if let Some(f) = hht {
+                let (u0, v0) = t.twine_vectors(&f.xn);
+                let m = &f.net[i];
+                crate::dynamics::use_hht_force(&t.twine, u0, &m[0], &f.w, &mut out.u);
+                crate::dynamics::use_hht_force(&t.twine, v0, &m[1], &f.w, &mut out.v);
+            }
         };
         if tris.len() >= PAR_THRESHOLD {
             tris.par_iter()
                 .zip(self.net.par_iter_mut())
+                .enumerate()
                 .for_each(kernel);
         } else {
-            tris.iter().zip(self.net.iter_mut()).for_each(kernel);
+            tris.iter()
+                .zip(self.net.iter_mut())
+                .enumerate()
+                .for_each(kernel);
         }
         if let Some(i) = self.net.iter().position(|ev| ev.bad()) {
             let [a, b, c] = tris[i].nodes;
@@ -115,6 +126,39 @@ impl System {
                 let f = ev.force(t, k);
                 for c in 0..3 {
                     self.fint[nd][c] += f[c];
+                }
+            }
+        }
+    }
+
+    /// Replaces the step forces of the energy-consistent HHT-α in the last evaluation by the
+    /// evaluated state's own element forces T·u (cables and twines; f_int and q follow), so
+    /// that what is read after a converged step is of the state x_{n+1}
+    /// (docs/theory/fem.md#energy-consistent-hht-alpha).
+    pub(crate) fn use_state_element_forces(&mut self, model: &Model) {
+        let state =
+            |c: &CableEval| -> [f64; 3] { std::array::from_fn(|k| c.tension * c.force_b_dir[k]) };
+        for (e, c) in model.elements().iter().zip(self.cable.iter_mut()) {
+            let f = state(c);
+            for k in 0..3 {
+                let d = f[k] - c.force_b[k];
+                self.fint[e.a][k] -= d;
+                self.fint[e.b][k] += d;
+                self.q[e.a][k] -= d;
+                self.q[e.b][k] += d;
+            }
+            c.force_b = f;
+        }
+        for (t, ev) in model.net_triangles().iter().zip(self.net.iter_mut()) {
+            let before: [[f64; 3]; 3] = std::array::from_fn(|k| ev.force(t, k));
+            ev.u.force_b = state(&ev.u);
+            ev.v.force_b = state(&ev.v);
+            for (k, &nd) in t.nodes.iter().enumerate() {
+                let f = ev.force(t, k);
+                for c in 0..3 {
+                    let d = f[c] - before[k][c];
+                    self.fint[nd][c] += d;
+                    self.q[nd][c] += d;
                 }
             }
         }
