@@ -279,17 +279,6 @@ fn request(a: &Args) -> MeshRequest {
 
 /// Print the report of `mesh` (text or JSON) and write it to `out` if given.
 pub fn report(mesh: &Mesh, out: Option<&Path>, json: bool) -> anyhow::Result<()> {
-    report_with(mesh, out, json, true)
-}
-
-/// [`report`]; `notices` false leaves the mesh notices out of the text (a caller that prints
-/// them as diagnostics, like `aqua check`, says each once).
-pub fn report_with(
-    mesh: &Mesh,
-    out: Option<&Path>,
-    json: bool,
-    notices: bool,
-) -> anyhow::Result<()> {
     if let Some(path) = out {
         if path.extension().and_then(|e| e.to_str()) != Some("vtm") {
             return Err(InputError::new(format!(
@@ -311,7 +300,7 @@ pub fn report_with(
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
-    print!("{}", summary.to_text(notices));
+    print!("{}", summary.to_text(true));
     if let Some(path) = out {
         println!("wrote {}", path.display());
     }
