@@ -333,6 +333,25 @@ pub struct CaseRecord {
     pub wall_time_s: f64,
 }
 
+impl CaseRecord {
+    /// Writes it as `dir/case.json`.
+    pub fn write(&self, dir: &Path) -> std::io::Result<()> {
+        let text = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
+        std::fs::write(dir.join("case.json"), text)
+    }
+}
+
+/// The warnings of the run in `dir`, as its `run.json` lists them (`diagnostics`), one text
+/// each; none when there is no readable `run.json`.
+pub fn run_diagnostics(dir: &Path) -> Vec<String> {
+    let list = read_json(&dir.join("run.json"))
+        .and_then(|v| v.get("diagnostics").and_then(|d| d.as_array()).cloned())
+        .unwrap_or_default();
+    list.iter()
+        .map(|d| d.as_str().map_or_else(|| d.to_string(), str::to_string))
+        .collect()
+}
+
 /// One collected run folder.
 #[derive(Debug, Clone)]
 pub struct Collected {
