@@ -6,6 +6,13 @@ use crate::config::{
     CurrentKind, DepthValue, GammaValue, SeaSpec, SpectrumShape, SpectrumSpec, WaveKind,
 };
 
+/// The enum value a scene word spells (`airy` for [`WaveKind`], `wheeler` for
+/// [`Stretching`], `pm` for [`SpectrumShape`]); `None` for a word the key does not take.
+pub fn from_name<T: serde::de::DeserializeOwned>(name: &str) -> Option<T> {
+    use serde::de::{IntoDeserializer, value::Error};
+    T::deserialize(IntoDeserializer::<Error>::into_deserializer(name)).ok()
+}
+
 /// Values that replace keys of a [`SeaSpec`]; `None` keeps the key as it is.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SeaParams {
@@ -139,6 +146,17 @@ impl SeaParams {
 mod tests {
     use super::*;
     use crate::BuildOptions;
+
+    #[test]
+    fn scene_words_name_their_values() {
+        assert_eq!(from_name::<WaveKind>("stokes2"), Some(WaveKind::Stokes2));
+        assert_eq!(
+            from_name::<Stretching>("wheeler"),
+            Some(Stretching::Wheeler)
+        );
+        assert_eq!(from_name::<SpectrumShape>("pm"), Some(SpectrumShape::Pm));
+        assert_eq!(from_name::<WaveKind>("stokes3"), None);
+    }
 
     /// Airy wave H = 2 m, T = 8 s in deep water: the built sea has ω = 2π/T and, from the
     /// deep-water dispersion relation ω² = g·k, L = g·T²/(2π).

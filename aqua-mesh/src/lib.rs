@@ -51,7 +51,8 @@
 //!    descriptions of what they built ([`CageType`], [`CageCounts`], [`NetGrouping`]);
 //! 4. the builders ([`cage`], [`panel`], [`line`](mod@line), [`buoy`], [`farm`], with [`net`],
 //!    [`net_triangle`] and [`collar`]), adding to a mesh through an internal mesh builder;
-//! 5. [`summary`] (reports) and [`io`] (gmsh import, VTK export).
+//! 5. [`summary`] (reports) and [`io`] (gmsh import, VTK export);
+//! 6. [`request`]: one builder call from flat keys, as `aqua mesh` takes them.
 
 pub mod buoy;
 pub mod cage;
@@ -66,6 +67,7 @@ pub mod model;
 pub mod net;
 pub mod net_triangle;
 pub mod panel;
+pub mod request;
 pub mod section;
 pub mod section_override;
 pub mod summary;
@@ -88,6 +90,7 @@ pub use model::{
 };
 pub use net::{NetParams, NetResolved, TwineAreas};
 pub use panel::{PanelFixed, PanelParams};
+pub use request::{Builder, MeshRequest, RequestError};
 pub use section::{BendingElement, DEFAULT_POISSON_RATIO, Section, TENSION_ONLY};
 pub use section_override::SectionOverride;
 pub use summary::{GroupSummary, MeshSummary, ObjectSummary};

@@ -43,6 +43,17 @@ pub enum LineShape {
     Straight,
 }
 
+impl LineShape {
+    /// Parse the scene/CLI spelling (`catenary`, `straight`).
+    pub fn from_name(s: &str) -> Option<Self> {
+        match s {
+            "catenary" => Some(LineShape::Catenary),
+            "straight" => Some(LineShape::Straight),
+            _ => None,
+        }
+    }
+}
+
 section_table! {
     /// One `[[line]]` table. Section keys (docs/theory/fem.md#sections) sit directly in the table.
     #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]

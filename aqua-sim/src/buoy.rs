@@ -120,32 +120,108 @@ pub struct Buoy {
     pub size: f64,
 }
 
-fn positive(key: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 {
+/// What is wrong with a `[[buoy]]` table: each names the key, its value and what is valid
+/// (the caller adds the file, line and table).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BuoyError {
+    /// Both `position` and `node`.
+    #[error(
+        "both `position` and `node` given: a buoy is either a new node at `position` or sits \
+         on the nodes `node` names; give one"
+    )]
+    PositionAndNode,
+    /// Neither `position` nor `node`.
+    #[error(
+        "give `position = [x, y, z]` (a new free node) or `node = \"object/group[k]\"` (on \
+         existing nodes)"
+    )]
+    NoPlace,
+    /// A `position` with a non-finite coordinate.
+    #[error("position = {0:?}: must be finite")]
+    Position([f64; 3]),
+    /// A value outside its range.
+    #[error("{key} = {value}: {valid}")]
+    Value {
+        /// The key.
+        key: &'static str,
+        /// The value given.
+        value: f64,
+        /// What would be valid.
+        valid: String,
+    },
+    /// Two keys of which one may be given.
+    #[error("both `{0}` and `{1}` given; give one")]
+    Both(&'static str, &'static str),
+    /// Neither `diameter` nor `volume` (`key` = None), or one of them 0.
+    #[error("{}{ZERO_VOLUME}", key.map(|k| format!("{k} = 0: ")).unwrap_or_default())]
+    ZeroVolume {
+        /// The key given as 0, if any.
+        key: Option<&'static str>,
+    },
+    /// A sphere given a `height`.
+    #[error("height = {0}: a sphere's height is its diameter; give `diameter` or `volume`")]
+    SphereHeight(f64),
+    /// A cylinder without `height`.
+    #[error("height is missing: a cylinder needs its height [m] (vertical axis)")]
+    CylinderHeight,
+    /// A size or coefficient key given to a point.
+    #[error(
+        "{key} = {value}: shape = \"point\" has no volume or projected area (mass and \
+         `drag_area` only); use shape = \"sphere\" or \"cylinder\" for a body with volume"
+    )]
+    PointKey {
+        /// The key.
+        key: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A point with neither mass nor drag.
+    #[error("shape = \"point\" with neither `mass` nor `drag_area` does nothing; give one")]
+    EmptyPoint,
+}
+
+fn check(key: &'static str, v: f64, ok: bool, valid: impl Into<String>) -> Result<f64, BuoyError> {
+    if ok {
         Ok(v)
     } else {
-        Err(format!("{key} = {v}: must be a finite number > 0"))
+        Err(BuoyError::Value {
+            key,
+            value: v,
+            valid: valid.into(),
+        })
     }
+}
+
+fn positive(key: &'static str, v: f64) -> Result<f64, BuoyError> {
+    check(
+        key,
+        v,
+        v.is_finite() && v > 0.0,
+        "must be a finite number > 0",
+    )
 }
 
 /// A length [m]: > 0 and at most aqua-mesh's [`aqua_mesh::MAX_LENGTH`].
-fn length(key: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 && v <= aqua_mesh::MAX_LENGTH {
-        Ok(v)
-    } else {
-        Err(format!(
-            "{key} = {v}: must be a finite number > 0 and <= {} m (lengths are in metres)",
+fn length(key: &'static str, v: f64) -> Result<f64, BuoyError> {
+    let ok = v.is_finite() && v > 0.0 && v <= aqua_mesh::MAX_LENGTH;
+    check(
+        key,
+        v,
+        ok,
+        format!(
+            "must be a finite number > 0 and <= {} m (lengths are in metres)",
             aqua_mesh::MAX_LENGTH
-        ))
-    }
+        ),
+    )
 }
 
-fn non_negative(key: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{key} = {v}: must be a finite number >= 0"))
-    }
+fn non_negative(key: &'static str, v: f64) -> Result<f64, BuoyError> {
+    check(
+        key,
+        v,
+        v.is_finite() && v >= 0.0,
+        "must be a finite number >= 0",
+    )
 }
 
 /// The keys of `[farm.buoy]`, in the order messages list them: the others of [`BuoySpec`]
@@ -164,31 +240,21 @@ const ZERO_VOLUME: &str = "a buoy with zero volume: give `diameter` or `volume` 
 impl BuoySpec {
     /// Checks the keys; the error message names the key, its value and what is valid
     /// (the caller adds the file, line and table).
-    pub fn resolve(&self) -> Result<Buoy, String> {
+    pub fn resolve(&self) -> Result<Buoy, BuoyError> {
         match (&self.position, &self.node) {
-            (Some(_), Some(_)) => {
-                return Err(
-                    "both `position` and `node` given: a buoy is either a new node at \
-                            `position` or sits on the nodes `node` names; give one"
-                        .into(),
-                );
-            }
-            (None, None) => {
-                return Err("give `position = [x, y, z]` (a new free node) or `node = \
-                            \"object/group[k]\"` (on existing nodes)"
-                    .into());
-            }
+            (Some(_), Some(_)) => return Err(BuoyError::PositionAndNode),
+            (None, None) => return Err(BuoyError::NoPlace),
             _ => {}
         }
         if let Some(p) = self.position
             && !p.iter().all(|c| c.is_finite())
         {
-            return Err(format!("position = {p:?}: must be finite"));
+            return Err(BuoyError::Position(p));
         }
         let mass = non_negative("mass", self.mass)?;
         let seabed_stiffness = non_negative("seabed_stiffness", self.seabed_stiffness)?;
         if self.drag_coefficient.is_some() && self.drag_area.is_some() {
-            return Err("both `drag_coefficient` and `drag_area` given; give one".into());
+            return Err(BuoyError::Both("drag_coefficient", "drag_area"));
         }
         let (props, size) = match self.shape {
             BuoyShape::Sphere => self.sphere()?,
@@ -204,22 +270,23 @@ impl BuoySpec {
     }
 
     /// The volume or diameter, exactly one of them, > 0.
-    fn size_keys(&self) -> Result<(Option<f64>, Option<f64>), String> {
+    fn size_keys(&self) -> Result<(Option<f64>, Option<f64>), BuoyError> {
+        let zero = |key| BuoyError::ZeroVolume { key };
         match (self.diameter, self.volume) {
-            (Some(_), Some(_)) => Err("both `diameter` and `volume` given; give one".into()),
-            (None, None) => Err(ZERO_VOLUME.into()),
+            (Some(_), Some(_)) => Err(BuoyError::Both("diameter", "volume")),
+            (None, None) => Err(zero(None)),
             (Some(d), None) => match d {
-                0.0 => Err(format!("diameter = 0: {ZERO_VOLUME}")),
+                0.0 => Err(zero(Some("diameter"))),
                 _ => Ok((Some(length("diameter", d)?), None)),
             },
             (None, Some(v)) => match v {
-                0.0 => Err(format!("volume = 0: {ZERO_VOLUME}")),
+                0.0 => Err(zero(Some("volume"))),
                 _ => Ok((None, Some(positive("volume", v)?))),
             },
         }
     }
 
-    fn coefficients(&self, area: f64) -> Result<(f64, f64), String> {
+    fn coefficients(&self, area: f64) -> Result<(f64, f64), BuoyError> {
         let drag_area = match (self.drag_area, self.drag_coefficient) {
             (Some(a), _) => non_negative("drag_area", a)?,
             (None, c) => {
@@ -235,11 +302,9 @@ impl BuoySpec {
         Ok((drag_area, ca))
     }
 
-    fn sphere(&self) -> Result<(Option<PointProps>, f64), String> {
+    fn sphere(&self) -> Result<(Option<PointProps>, f64), BuoyError> {
         if let Some(h) = self.height {
-            return Err(format!(
-                "height = {h}: a sphere's height is its diameter; give `diameter` or `volume`"
-            ));
+            return Err(BuoyError::SphereHeight(h));
         }
         let r = match self.size_keys()? {
             (Some(d), _) => 0.5 * d,
@@ -256,14 +321,10 @@ impl BuoySpec {
         Ok((Some(props), 2.0 * r))
     }
 
-    fn cylinder(&self) -> Result<(Option<PointProps>, f64), String> {
+    fn cylinder(&self) -> Result<(Option<PointProps>, f64), BuoyError> {
         let h = match self.height {
             Some(h) => length("height", h)?,
-            None => {
-                return Err(
-                    "height is missing: a cylinder needs its height [m] (vertical axis)".into(),
-                );
-            }
+            None => return Err(BuoyError::CylinderHeight),
         };
         let d = match self.size_keys()? {
             (Some(d), _) => d,
@@ -280,7 +341,7 @@ impl BuoySpec {
         Ok((Some(props), h))
     }
 
-    fn point(&self) -> Result<Option<PointProps>, String> {
+    fn point(&self) -> Result<Option<PointProps>, BuoyError> {
         for (key, v) in [
             ("diameter", self.diameter),
             ("volume", self.volume),
@@ -288,20 +349,13 @@ impl BuoySpec {
             ("drag_coefficient", self.drag_coefficient),
             ("added_mass_coefficient", self.added_mass_coefficient),
         ] {
-            if let Some(v) = v {
-                return Err(format!(
-                    "{key} = {v}: shape = \"point\" has no volume or projected area (mass and \
-                     `drag_area` only); use shape = \"sphere\" or \"cylinder\" for a body with \
-                     volume"
-                ));
+            if let Some(value) = v {
+                return Err(BuoyError::PointKey { key, value });
             }
         }
         let drag_area = non_negative("drag_area", self.drag_area.unwrap_or(0.0))?;
         if self.mass == 0.0 && drag_area == 0.0 {
-            return Err(
-                "shape = \"point\" with neither `mass` nor `drag_area` does nothing; give one"
-                    .into(),
-            );
+            return Err(BuoyError::EmptyPoint);
         }
         Ok((drag_area > 0.0).then_some(PointProps {
             volume: 0.0,
@@ -404,21 +458,36 @@ mod tests {
     #[test]
     fn bad_input_is_named() {
         let e = at(BuoyShape::Sphere).resolve().unwrap_err();
+        assert_eq!(e, BuoyError::ZeroVolume { key: None });
+        let mut s = at(BuoyShape::Cylinder);
+        s.volume = Some(1.0);
+        assert_eq!(s.resolve().unwrap_err(), BuoyError::CylinderHeight);
+        let e = at(BuoyShape::Sphere).resolve().unwrap_err().to_string();
         assert!(e.contains("a buoy with zero volume"), "{e}");
         let mut s = at(BuoyShape::Sphere);
         s.volume = Some(0.0);
-        let e = s.resolve().unwrap_err();
+        let e = s.resolve().unwrap_err().to_string();
         assert!(e.contains("volume = 0") && e.contains("zero volume"), "{e}");
         let mut s = at(BuoyShape::Sphere);
         s.diameter = Some(-1.0);
-        assert!(s.resolve().unwrap_err().contains("diameter = -1"));
+        assert!(
+            s.resolve()
+                .unwrap_err()
+                .to_string()
+                .contains("diameter = -1")
+        );
         let mut s = at(BuoyShape::Cylinder);
         s.diameter = Some(1.0);
-        assert!(s.resolve().unwrap_err().contains("height"));
+        assert!(s.resolve().unwrap_err().to_string().contains("height"));
         let mut s = at(BuoyShape::Point);
         s.diameter = Some(1.0);
-        assert!(s.resolve().unwrap_err().contains("shape = \"point\""));
-        let e = at(BuoyShape::Point).resolve().unwrap_err();
+        assert!(
+            s.resolve()
+                .unwrap_err()
+                .to_string()
+                .contains("shape = \"point\"")
+        );
+        let e = at(BuoyShape::Point).resolve().unwrap_err().to_string();
         assert!(e.contains("neither"), "{e}");
         let mut s = at(BuoyShape::Point);
         s.mass = 50.0;
@@ -431,6 +500,7 @@ mod tests {
         assert!(
             s.resolve()
                 .unwrap_err()
+                .to_string()
                 .contains("both `position` and `node`")
         );
     }

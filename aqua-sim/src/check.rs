@@ -2,7 +2,7 @@
 //! physics are active and which are skipped, and a cost estimate — of a scene that passed the
 //! same validation as a run ([`crate::plan::prepare`]).
 
-use crate::build::Built;
+use crate::build::{Built, resolve_ref};
 use crate::diagnostic::Diagnostic;
 use crate::error::Result;
 use crate::estimate::{Driving, Workload};
@@ -81,6 +81,26 @@ pub struct Report {
     pub cost: Cost,
     /// Warnings (building the model and setting up the water loads).
     pub warnings: Vec<Diagnostic>,
+    /// Totals of every `[[point]]` table (in the text only: the JSON has the scene's tables).
+    #[serde(skip)]
+    pub points: Vec<PointTotals>,
+}
+
+/// One `[[point]]` table summed over the nodes it names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointTotals {
+    /// Its `nodes` reference.
+    pub nodes: String,
+    /// Nodes the reference names.
+    pub count: usize,
+    /// Mass [kg].
+    pub mass: f64,
+    /// Weight in the scene's gravity [N].
+    pub weight: f64,
+    /// Force [N].
+    pub force: [f64; 3],
+    /// Volume [m³].
+    pub volume: f64,
 }
 
 /// The report of a prepared scene (sets up the water loads, as a run would).
@@ -108,7 +128,26 @@ pub fn report(prep: &Prepared) -> Result<Report> {
             .chain(&load_warnings)
             .cloned()
             .collect(),
+        points: point_totals(prep),
     })
+}
+
+/// The totals of every `[[point]]` table over its nodes.
+fn point_totals(prep: &Prepared) -> Vec<PointTotals> {
+    let g = prep.built.sea.constants().gravity;
+    let totals = |v: &crate::scene::PointSpec| {
+        let count = resolve_ref(&prep.built.mesh, &v.nodes).map_or(0, |n| n.len());
+        let k = count as f64;
+        PointTotals {
+            nodes: v.nodes.clone(),
+            count,
+            mass: k * v.mass,
+            weight: k * v.mass * g,
+            force: v.force.map(|f| k * f),
+            volume: k * v.volume,
+        }
+    };
+    prep.scene.point.iter().map(|p| totals(&p.value)).collect()
 }
 
 /// Wave components evaluated per point.

@@ -28,6 +28,7 @@
 mod build;
 pub mod buoy;
 pub mod check;
+mod check_text;
 pub mod coupling;
 mod csv;
 pub mod design;

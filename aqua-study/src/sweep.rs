@@ -130,11 +130,12 @@ impl Sweep {
                 .clone()
                 .unwrap_or_else(|| format!("{stem}-runs").into()),
         );
-        let common = overrides_of(&raw.set, "set").map_err(err)?;
-        let mut cases = matrix(&raw, &common).map_err(err)?;
+        let list_err = |e: CaseFileError| err(e.to_string());
+        let common = overrides_of(&raw.set, "set").map_err(list_err)?;
+        let mut cases = matrix(&raw, &common).map_err(list_err)?;
         for (k, c) in raw.case.iter().enumerate() {
             let mut o = common.clone();
-            o.extend(overrides_of(&c.set, &format!("[[case]] #{} set", k + 1)).map_err(err)?);
+            o.extend(overrides_of(&c.set, &format!("[[case]] #{} set", k + 1)).map_err(list_err)?);
             if c.name.trim().is_empty() {
                 return Err(err(format!("[[case]] #{}: name is empty", k + 1)));
             }
@@ -237,11 +238,56 @@ pub fn case_folder(k: usize) -> String {
     format!("case_{k:04}")
 }
 
+/// What is wrong with a case file's `set`, `[vary]` or `combine`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum CaseFileError {
+    /// A path that is no scene key path; `at` names the table (`set: `, `[vary] `).
+    #[error("{at}{source}")]
+    Path {
+        /// Where, with its separator.
+        at: String,
+        /// Why the path is not valid.
+        source: aqua_sim::overrides::OverrideError,
+    },
+    /// A `[vary]` list without values.
+    #[error("[vary] \"{path}\" = []: give at least one value")]
+    EmptyList {
+        /// The varied path.
+        path: String,
+    },
+    /// A `[vary]` value that is no list.
+    #[error("[vary] \"{path}\" = {value}: a list of values, e.g. [0.5, 1.0]")]
+    NotList {
+        /// The varied path.
+        path: String,
+        /// The value given.
+        value: String,
+    },
+    /// Zipped lists of different lengths.
+    #[error(
+        "combine = \"zip\" needs lists of one length: \"{first}\" has {n} values, \"{path}\" \
+         has {len}"
+    )]
+    ZipLengths {
+        /// The first list's path.
+        first: String,
+        /// Its length.
+        n: usize,
+        /// A list of another length.
+        path: String,
+        /// Its length.
+        len: usize,
+    },
+}
+
 /// `PATH = VALUE` pairs of a `set` table.
-fn overrides_of(t: &Table, what: &str) -> std::result::Result<Vec<Override>, String> {
+fn overrides_of(t: &Table, what: &str) -> std::result::Result<Vec<Override>, CaseFileError> {
     t.iter()
         .map(|(path, value)| {
-            check_path_syntax(path).map_err(|m| format!("{what}: {m}"))?;
+            check_path_syntax(path).map_err(|m| CaseFileError::Path {
+                at: format!("{what}: "),
+                source: m,
+            })?;
             Ok(Override {
                 path: path.clone(),
                 value: value.clone(),
@@ -251,19 +297,21 @@ fn overrides_of(t: &Table, what: &str) -> std::result::Result<Vec<Override>, Str
 }
 
 /// The cases of `[vary]`.
-fn matrix(raw: &RawCases, common: &[Override]) -> std::result::Result<Vec<Case>, String> {
+fn matrix(raw: &RawCases, common: &[Override]) -> std::result::Result<Vec<Case>, CaseFileError> {
     let mut lists: Vec<(&String, &Vec<Value>)> = Vec::new();
     for (path, v) in &raw.vary {
-        check_path_syntax(path).map_err(|m| format!("[vary] {m}"))?;
+        check_path_syntax(path).map_err(|m| CaseFileError::Path {
+            at: "[vary] ".into(),
+            source: m,
+        })?;
         match v {
             Value::Array(a) if !a.is_empty() => lists.push((path, a)),
-            Value::Array(_) => {
-                return Err(format!("[vary] \"{path}\" = []: give at least one value"));
-            }
+            Value::Array(_) => return Err(CaseFileError::EmptyList { path: path.clone() }),
             other => {
-                return Err(format!(
-                    "[vary] \"{path}\" = {other}: a list of values, e.g. [0.5, 1.0]"
-                ));
+                return Err(CaseFileError::NotList {
+                    path: path.clone(),
+                    value: other.to_string(),
+                });
             }
         }
     }
@@ -285,11 +333,12 @@ fn matrix(raw: &RawCases, common: &[Override]) -> std::result::Result<Vec<Case>,
         Combine::Zip => {
             let n = lists[0].1.len();
             if let Some((p, v)) = lists.iter().find(|(_, v)| v.len() != n) {
-                return Err(format!(
-                    "combine = \"zip\" needs lists of one length: \"{}\" has {n} values, \"{p}\" has {}",
-                    lists[0].0,
-                    v.len()
-                ));
+                return Err(CaseFileError::ZipLengths {
+                    first: lists[0].0.clone(),
+                    n,
+                    path: p.to_string(),
+                    len: v.len(),
+                });
             }
             (0..n).map(|k| vec![k; lists.len()]).collect()
         }
@@ -331,6 +380,25 @@ pub struct CaseRecord {
     pub error: Option<String>,
     /// Wall time of the case [s].
     pub wall_time_s: f64,
+}
+
+impl CaseRecord {
+    /// Writes it as `dir/case.json`.
+    pub fn write(&self, dir: &Path) -> std::io::Result<()> {
+        let text = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
+        std::fs::write(dir.join("case.json"), text)
+    }
+}
+
+/// The warnings of the run in `dir`, as its `run.json` lists them (`diagnostics`), one text
+/// each; none when there is no readable `run.json`.
+pub fn run_diagnostics(dir: &Path) -> Vec<String> {
+    let list = read_json(&dir.join("run.json"))
+        .and_then(|v| v.get("diagnostics").and_then(|d| d.as_array()).cloned())
+        .unwrap_or_default();
+    list.iter()
+        .map(|d| d.as_str().map_or_else(|| d.to_string(), str::to_string))
+        .collect()
 }
 
 /// One collected run folder.
@@ -635,8 +703,22 @@ mod tests {
         assert_eq!(cases.len(), 2);
         assert_eq!(cases[1].name, "a=2 c=4");
         let r = raw("scene = \"s.toml\"\ncombine = \"zip\"\n[vary]\n\"a\" = [1, 2]\n\"c\" = [3]\n");
-        assert!(matrix(&r, &[]).unwrap_err().contains("one length"));
+        assert!(
+            matrix(&r, &[])
+                .unwrap_err()
+                .to_string()
+                .contains("one length")
+        );
         let r = raw("scene = \"s.toml\"\n[vary]\n\"a\" = []\n");
-        assert!(matrix(&r, &[]).unwrap_err().contains("at least one value"));
+        assert_eq!(
+            matrix(&r, &[]).unwrap_err(),
+            CaseFileError::EmptyList { path: "a".into() }
+        );
+        assert!(
+            matrix(&r, &[])
+                .unwrap_err()
+                .to_string()
+                .contains("at least one value")
+        );
     }
 }

@@ -13,10 +13,7 @@
 
 use crate::InputError;
 use anyhow::Context;
-use aqua_mesh::{
-    CageParams, CageType, Fairlead, GmshParams, LineParams, LineShape, Mesh, MeshError, PanelFixed,
-    PanelParams,
-};
+use aqua_mesh::{Builder, CageType, LineShape, Mesh, MeshRequest, RequestError};
 use std::path::{Path, PathBuf};
 
 /// What to build.
@@ -209,116 +206,79 @@ fn parse_divisions(s: &str) -> Result<[u32; 2], String> {
     <[u32; 2]>::try_from(v).map_err(|_| format!("`{s}` is not n_w,n_h (two whole numbers)"))
 }
 
-/// Turn a library error into an input error (exit code 2) unless it is a write failure.
-fn input(e: MeshError) -> anyhow::Error {
-    InputError::new(e.to_string()).into()
-}
-
-/// Flags given that belong to a group of keys, for "flag not used by <kind>" errors.
-fn given(args: &Args) -> Vec<(&'static str, &'static str)> {
-    let mut v = Vec::new();
-    macro_rules! g {
-        ($cat:expr, $($f:ident => $flag:expr),*) => {$(
-            if args.$f.is_some() { v.push(($cat, $flag)); }
-        )*};
-    }
-    g!("cage", circumference => "--circumference", side => "--side",
-       bottom_ratio => "--bottom-ratio", depth => "--depth", cone_depth => "--cone-depth",
-       frame_offset => "--frame-offset", rope_depth => "--rope-depth",
-       tube_depth => "--tube-depth", weight_depth => "--weight-depth",
-       sinker_weight_per_metre => "--sinker-weight-per-metre",
-       centre_weight => "--centre-weight", tip_weight => "--tip-weight");
-    g!("net", twine_diameter => "--twine-diameter", half_mesh => "--half-mesh",
-       solidity => "--solidity", grouping_ratio => "--grouping-ratio");
-    g!("panel", width => "--width", height => "--height", divisions => "--divisions",
-       centre => "--centre", normal => "--normal", up => "--up",
-       bottom_weight => "--bottom-weight");
-    g!("line", anchor => "--anchor", fairlead => "--fairlead", length => "--length",
-       segments => "--segments", shape => "--shape", ea => "--ea",
-       mass_per_length => "--mass-per-length", seabed_z => "--seabed-z");
-    g!("gmsh", scale => "--scale", rotate_deg => "--rotate-deg", translate => "--translate");
-    g!("size", element_length => "--element-length", diameter => "--diameter");
-    if !args.rename.is_empty() {
-        v.push(("gmsh", "--rename"));
-    }
-    if !args.origin.is_empty() {
-        v.push(("origin", "--origin"));
-    }
-    if !args.fixed.is_empty() {
-        v.push(("fixed", "--fixed"));
-    }
-    v
-}
-
-fn reject_others(args: &Args, what: &str, allowed: &[&str]) -> anyhow::Result<()> {
-    for (cat, flag) in given(args) {
-        if !allowed.contains(&cat) {
-            return Err(InputError::new(format!(
-                "flag {flag} is not used by `aqua mesh {what}`; see `aqua mesh --help`"
-            ))
-            .into());
+/// The library's error as an input error (exit code 2), its keys spelt as flags.
+fn input(e: RequestError) -> anyhow::Error {
+    let flag = |key: &str| format!("--{}", key.replace('_', "-"));
+    let msg = match e {
+        RequestError::KeyNotUsed { key, builder } => format!(
+            "flag {} is not used by `aqua mesh {}`; see `aqua mesh --help`",
+            flag(key),
+            if builder == "gmsh" { "--from" } else { builder }
+        ),
+        RequestError::PanelDiameter => "flag --diameter is not used by `aqua mesh panel`".into(),
+        RequestError::MissingKey { builder, key, what } => {
+            format!("{builder} needs {} {what}", flag(key))
         }
-    }
-    Ok(())
+        RequestError::PanelFixed { value } => {
+            format!("--fixed `{value}` for a panel: valid values all, top, top_bottom, edges, none")
+        }
+        RequestError::PanelFixedCount => {
+            "--fixed takes one value for a panel (all, top, top_bottom, edges, none)".into()
+        }
+        RequestError::Rename { value } => format!("--rename `{value}`: expected GmshName=role"),
+        RequestError::Mesh(e) => e.to_string(),
+    };
+    InputError::new(msg).into()
 }
 
-/// Cage parameters from the flags.
-pub fn cage_params(args: &Args, kind: CageType) -> CageParams {
-    let mut p = CageParams::new(kind);
-    p.name = args.name.clone();
-    p.circumference = args.circumference;
-    p.diameter = args.diameter;
-    p.side = args.side;
-    p.bottom_ratio = args.bottom_ratio;
-    p.depth = args.depth;
-    p.cone_depth = args.cone_depth;
-    p.element_length = args.element_length;
-    p.frame_offset = args.frame_offset;
-    p.rope_depth = args.rope_depth;
-    p.tube_depth = args.tube_depth;
-    p.weight_depth = args.weight_depth;
-    p.sinker_weight_per_metre = args.sinker_weight_per_metre;
-    p.centre_weight = args.centre_weight;
-    p.tip_weight = args.tip_weight;
-    if !args.origin.is_empty() {
-        p.origins = Some(args.origin.clone());
+/// The builder keys of the flags.
+fn request(a: &Args) -> MeshRequest {
+    MeshRequest {
+        name: a.name.clone(),
+        circumference: a.circumference,
+        diameter: a.diameter,
+        side: a.side,
+        bottom_ratio: a.bottom_ratio,
+        depth: a.depth,
+        cone_depth: a.cone_depth,
+        element_length: a.element_length,
+        frame_offset: a.frame_offset,
+        rope_depth: a.rope_depth,
+        tube_depth: a.tube_depth,
+        weight_depth: a.weight_depth,
+        sinker_weight_per_metre: a.sinker_weight_per_metre,
+        centre_weight: a.centre_weight,
+        tip_weight: a.tip_weight,
+        origin: a.origin.clone(),
+        fixed: a.fixed.clone(),
+        twine_diameter: a.twine_diameter,
+        half_mesh: a.half_mesh,
+        solidity: a.solidity,
+        grouping_ratio: a.grouping_ratio,
+        width: a.width,
+        height: a.height,
+        divisions: a.divisions,
+        centre: a.centre,
+        normal: a.normal,
+        up: a.up,
+        bottom_weight: a.bottom_weight,
+        anchor: a.anchor,
+        fairlead: a.fairlead,
+        length: a.length,
+        segments: a.segments,
+        shape: a.shape.as_deref().and_then(LineShape::from_name),
+        ea: a.ea,
+        mass_per_length: a.mass_per_length,
+        seabed_z: a.seabed_z,
+        scale: a.scale,
+        rotate_deg: a.rotate_deg,
+        translate: a.translate,
+        rename: a.rename.clone(),
     }
-    if !args.fixed.is_empty() {
-        p.fixed = Some(
-            args.fixed
-                .iter()
-                .filter(|f| *f != "none")
-                .cloned()
-                .collect(),
-        );
-    }
-    p.net.twine_diameter = args.twine_diameter;
-    p.net.half_mesh = args.half_mesh;
-    p.net.solidity = args.solidity;
-    p.net.grouping_ratio = args.grouping_ratio;
-    p
-}
-
-/// Build a cage from its parameter struct (e.g. a scene's `[[cage]]` table), print the report
-/// and optionally write `out` (.vtm). This is what `aqua mesh <type>` runs.
-pub fn run_cage(params: &CageParams, out: Option<&Path>, json: bool) -> anyhow::Result<()> {
-    let mesh = params.build().map_err(input)?;
-    report(&mesh, out, json)
 }
 
 /// Print the report of `mesh` (text or JSON) and write it to `out` if given.
 pub fn report(mesh: &Mesh, out: Option<&Path>, json: bool) -> anyhow::Result<()> {
-    report_with(mesh, out, json, true)
-}
-
-/// [`report`]; `notices` false leaves the mesh notices out of the text (a caller that prints
-/// them as diagnostics, like `aqua check`, says each once).
-pub fn report_with(
-    mesh: &Mesh,
-    out: Option<&Path>,
-    json: bool,
-    notices: bool,
-) -> anyhow::Result<()> {
     if let Some(path) = out {
         if path.extension().and_then(|e| e.to_str()) != Some("vtm") {
             return Err(InputError::new(format!(
@@ -340,7 +300,7 @@ pub fn report_with(
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
-    print!("{}", summary.to_text(notices));
+    print!("{}", summary.to_text(true));
     if let Some(path) = out {
         println!("wrote {}", path.display());
     }
@@ -349,124 +309,30 @@ pub fn report_with(
 
 /// Run `aqua mesh`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let out = args.out.clone();
-    let out = out.as_deref();
+    let out = args.out.as_deref();
     if let Some(path) = &args.scene {
         let scene = aqua_sim::scene::read_scene(aqua_sim::SceneInput::File(path), &[])?;
         let (mesh, _) = aqua_sim::build_mesh(&scene)?;
         return report(&mesh, out, args.json);
     }
-    if let Some(file) = &args.from {
-        reject_others(&args, "--from", &["gmsh", "net", "origin"])?;
-        let mut rename = std::collections::BTreeMap::new();
-        for r in &args.rename {
-            let (a, b) = r.split_once('=').ok_or_else(|| {
-                InputError::new(format!("--rename `{r}`: expected GmshName=role"))
-            })?;
-            rename.insert(a.to_string(), b.to_string());
+    let builder = match (&args.from, args.kind) {
+        (Some(file), _) => Builder::Gmsh(file.clone()),
+        (None, Some(kind)) => match kind {
+            Kind::Cct => Builder::Cage(CageType::Cct),
+            Kind::Ccs => Builder::Cage(CageType::Ccs),
+            Kind::Csm => Builder::Cage(CageType::Csm),
+            Kind::Ssm => Builder::Cage(CageType::Ssm),
+            Kind::Cst => Builder::Cage(CageType::Cst),
+            Kind::Panel => Builder::Panel,
+            Kind::Line => Builder::Line,
+        },
+        (None, None) => {
+            return Err(InputError::new(
+                "give a builder (cct, ccs, csm, ssm, panel, line) or --from <file.msh>",
+            )
+            .into());
         }
-        let mut p = GmshParams {
-            name: args.name.clone(),
-            file: file.clone(),
-            scale: args.scale,
-            rotate_deg: args.rotate_deg,
-            translate: args.translate,
-            origins: (!args.origin.is_empty()).then(|| args.origin.clone()),
-            rename,
-            ..Default::default()
-        };
-        p.net.twine_diameter = args.twine_diameter;
-        p.net.half_mesh = args.half_mesh;
-        p.net.solidity = args.solidity;
-        p.net.grouping_ratio = args.grouping_ratio;
-        let mesh = aqua_mesh::import_gmsh(&p).map_err(input)?;
-        return report(&mesh, out, args.json);
-    }
-    let Some(kind) = args.kind else {
-        return Err(InputError::new(
-            "give a builder (cct, ccs, csm, ssm, panel, line) or --from <file.msh>",
-        )
-        .into());
     };
-    match kind {
-        Kind::Cct | Kind::Ccs | Kind::Csm | Kind::Ssm | Kind::Cst => {
-            let t = match kind {
-                Kind::Cct => CageType::Cct,
-                Kind::Ccs => CageType::Ccs,
-                Kind::Csm => CageType::Csm,
-                Kind::Ssm => CageType::Ssm,
-                _ => CageType::Cst,
-            };
-            reject_others(&args, t.code(), &["cage", "net", "size", "origin", "fixed"])?;
-            run_cage(&cage_params(&args, t), out, args.json)
-        }
-        Kind::Panel => {
-            reject_others(&args, "panel", &["panel", "net", "size", "fixed"])?;
-            if args.diameter.is_some() {
-                return Err(
-                    InputError::new("flag --diameter is not used by `aqua mesh panel`").into(),
-                );
-            }
-            let fixed = match args.fixed.as_slice() {
-                [] => PanelFixed::All,
-                [f] => PanelFixed::from_name(f).ok_or_else(|| {
-                    InputError::new(format!(
-                        "--fixed `{f}` for a panel: valid values all, top, top_bottom, edges, none"
-                    ))
-                })?,
-                _ => {
-                    return Err(InputError::new(
-                        "--fixed takes one value for a panel (all, top, top_bottom, edges, none)",
-                    )
-                    .into());
-                }
-            };
-            let mut p = PanelParams::new(
-                args.width
-                    .ok_or_else(|| InputError::new("panel needs --width [m]"))?,
-                args.height
-                    .ok_or_else(|| InputError::new("panel needs --height [m]"))?,
-            );
-            p.name = args.name.clone();
-            p.divisions = args.divisions;
-            p.element_length = args.element_length;
-            p.centre = args.centre;
-            p.normal = args.normal;
-            p.up = args.up;
-            p.fixed = fixed;
-            p.bottom_weight = args.bottom_weight;
-            p.net.twine_diameter = args.twine_diameter;
-            p.net.half_mesh = args.half_mesh;
-            p.net.solidity = args.solidity;
-            p.net.grouping_ratio = args.grouping_ratio;
-            let mesh = p.build().map_err(input)?;
-            report(&mesh, out, args.json)
-        }
-        Kind::Line => {
-            reject_others(&args, "line", &["line", "size", "fixed"])?;
-            let p = LineParams {
-                name: args.name.clone(),
-                anchor: args
-                    .anchor
-                    .ok_or_else(|| InputError::new("line needs --anchor x,y,z [m]"))?,
-                fairlead: args.fairlead.map(Fairlead::Point),
-                length: args
-                    .length
-                    .ok_or_else(|| InputError::new("line needs --length (unstretched, m)"))?,
-                segments: args.segments,
-                element_length: args.element_length,
-                shape: match args.shape.as_deref() {
-                    Some("straight") => LineShape::Straight,
-                    _ => LineShape::Catenary,
-                },
-                fixed: (!args.fixed.is_empty()).then(|| args.fixed.clone()),
-                diameter: args.diameter,
-                ea: args.ea,
-                mass_per_length: args.mass_per_length,
-                ..Default::default()
-            };
-            let mesh = p.build_with(None, args.seabed_z).map_err(input)?;
-            report(&mesh, out, args.json)
-        }
-    }
+    let mesh = request(&args).build(&builder).map_err(input)?;
+    report(&mesh, out, args.json)
 }

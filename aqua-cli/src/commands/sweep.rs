@@ -8,7 +8,7 @@ use crate::{InputError, interrupted};
 use anyhow::Context;
 use aqua_sim::Ending;
 use aqua_study::local_runner;
-use aqua_study::sweep::{CaseRecord, Sweep};
+use aqua_study::sweep::{CaseRecord, Sweep, run_diagnostics};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -156,15 +156,9 @@ fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
         Err(e) => (Ending::Failed.as_str(), Some(format!("{e:#}"))),
     };
     // The run's warnings (printed live above, kept in run.json's diagnostics).
-    let diagnostics = std::fs::read_to_string(dir.join("run.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v.get("diagnostics").and_then(|d| d.as_array()).cloned())
-        .unwrap_or_default();
     if let Some(f) = log.0.as_mut() {
         use std::io::Write;
-        for d in &diagnostics {
-            let text = d.as_str().map_or_else(|| d.to_string(), str::to_string);
+        for text in run_diagnostics(&dir) {
             let _ = writeln!(f, "{text}");
         }
     }
@@ -183,7 +177,8 @@ fn run_case(sweep: &Sweep, k: usize) -> anyhow::Result<()> {
         wall_time_s: t0.elapsed().as_secs_f64(),
     };
     let path = dir.join("case.json");
-    std::fs::write(&path, serde_json::to_string_pretty(&record)?)
+    record
+        .write(&dir)
         .with_context(|| format!("writing {}", path.display()))?;
     // The error itself is printed once more by main; the log already has it.
     log.0 = None;

@@ -5,10 +5,10 @@
 //! time series `t,x,y,z,eta,u,v,w,ax,ay,az` at given points and the component table.
 
 use crate::InputError;
-use aqua_env::config::{CurrentKind, SpectrumShape, WaveKind};
+use aqua_env::config::{CurrentKind, WaveKind};
 use aqua_env::record::{MeasuredSea, measure_record};
-use aqua_env::sea_params::SeaParams;
-use aqua_env::{BuildOptions, SeaSpec, SeaSummary, Stretching};
+use aqua_env::sea_params::{SeaParams, from_name};
+use aqua_env::{BuildOptions, SeaSpec, SeaSummary};
 use aqua_sim::scene;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -122,27 +122,15 @@ fn apply_flags(spec: SeaSpec, a: &Args) -> anyhow::Result<SeaSpec> {
         depth: a.depth.clone(),
         gravity: a.gravity,
         current: a.current.as_ref().map(|c| [c[0], c[1], c[2]]),
-        kind: a.kind.as_deref().map(|k| match k {
-            "airy" => WaveKind::Airy,
-            "stokes2" => WaveKind::Stokes2,
-            "irregular" => WaveKind::Irregular,
-            _ => WaveKind::None,
-        }),
-        stretching: a.stretching.as_deref().map(|s| match s {
-            "vertical" => Stretching::Vertical,
-            "wheeler" => Stretching::Wheeler,
-            _ => Stretching::None,
-        }),
+        kind: a.kind.as_deref().and_then(from_name),
+        stretching: a.stretching.as_deref().and_then(from_name),
         ramp_time: a.ramp_time,
         height: a.height,
         period: a.period,
         direction: a.direction,
         hs: a.hs,
         tp: a.tp,
-        spectrum: a.spectrum.as_deref().map(|s| match s {
-            "pm" => SpectrumShape::Pm,
-            _ => SpectrumShape::Jonswap,
-        }),
+        spectrum: a.spectrum.as_deref().and_then(from_name),
         gamma: a.gamma.clone(),
         components: a.components,
         seed: a.seed,

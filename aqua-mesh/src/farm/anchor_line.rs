@@ -1,11 +1,11 @@
 //! The anchor lines of a farm: chain and rope from a fixed anchor on the seabed to a plate,
-//! hanging as a catenary, and welding a mesh's trailing nodes onto existing ones.
+//! hanging as a catenary.
 
 use super::segments;
 use crate::error::{MeshError, Result};
 use crate::line::hanging_points;
 use crate::mesh_builder::MeshBuilder;
-use crate::model::{Mesh, Object, ObjectKind, PanelNodes, Role};
+use crate::model::{Mesh, Object, ObjectKind, Role};
 use crate::section::Section;
 use nalgebra::Point3;
 
@@ -77,36 +77,4 @@ pub fn anchor_line(
     });
     b.mesh.notices = notices;
     Ok(b.mesh)
-}
-
-/// Merges the last `targets.len()` nodes of the mesh, in order, into the existing nodes
-/// `targets` (a part's end joined to a node of another part); elements, groups and weights
-/// follow.
-pub fn weld_tail(mesh: &mut Mesh, targets: &[usize]) {
-    let k = targets.len();
-    let first = mesh.nodes.len() - k;
-    mesh.nodes.truncate(first);
-    mesh.node_owner.truncate(first);
-    let map = |n: &mut usize| {
-        if *n >= first {
-            *n = targets[*n - first];
-        }
-    };
-    for l in &mut mesh.lines {
-        l.nodes.iter_mut().for_each(map);
-    }
-    for p in &mut mesh.panels {
-        match &mut p.nodes {
-            PanelNodes::Tri(n) => n.iter_mut().for_each(map),
-            PanelNodes::Quad(n) => n.iter_mut().for_each(map),
-        }
-    }
-    for g in &mut mesh.groups {
-        g.nodes.iter_mut().for_each(map);
-        g.nodes.sort_unstable();
-        g.nodes.dedup();
-    }
-    for w in &mut mesh.weights {
-        map(&mut w.node);
-    }
 }

@@ -107,7 +107,7 @@ pub(super) fn collar_node(
 
 /// The frame object: plates, buoy nodes, frame lines, pendants and bridles. The bridles'
 /// collar ends are extra nodes at the end of the returned mesh; `welds` lists, in order, the
-/// existing node of `mesh` each of them becomes (for [`weld_tail`] after appending).
+/// existing node of `mesh` each of them becomes (for [`Mesh::weld_tail`] after appending).
 #[allow(clippy::type_complexity)]
 pub(super) fn frame_object(
     name: &str,

@@ -28,7 +28,7 @@
 mod anchor_line;
 mod grid;
 
-pub use anchor_line::{anchor_line, weld_tail};
+pub use anchor_line::anchor_line;
 
 use crate::Mesh;
 use crate::cage::CageParams;
@@ -358,7 +358,7 @@ impl FarmParams {
             &collars,
         )?;
         let off = mesh.append(frame_mesh);
-        weld_tail(&mut mesh, &welds);
+        mesh.weld_tail(&welds);
         let buoys = buoys_local.into_iter().map(|n| n + off).collect();
         let plate_node = |i: usize, j: usize| off + grid.plate(i, j);
         let mut anchors = Vec::new();
@@ -410,7 +410,7 @@ impl FarmParams {
                 self.initial_stretch,
             )?;
             mesh.append(line);
-            weld_tail(&mut mesh, &[plate_node(i, j)]);
+            mesh.weld_tail(&[plate_node(i, j)]);
             anchors.push(aname);
         }
         Ok(FarmMesh {

@@ -182,4 +182,91 @@ impl Mesh {
         self.notices.extend(other.notices);
         node_off
     }
+
+    /// Merges the last `targets.len()` nodes, in order, into the existing nodes `targets` (a
+    /// part's end joined to a node of another part: a line's fairlead, a farm's bridle ends):
+    /// the trailing nodes are removed and the elements, panels, groups and weights that used
+    /// them use their targets instead (group node lists stay sorted and unique).
+    pub fn weld_tail(&mut self, targets: &[usize]) {
+        let first = self.nodes.len() - targets.len();
+        self.nodes.truncate(first);
+        self.node_owner.truncate(first);
+        let map = |n: &mut usize| {
+            if *n >= first {
+                *n = targets[*n - first];
+            }
+        };
+        for l in &mut self.lines {
+            l.nodes.iter_mut().for_each(map);
+        }
+        for p in &mut self.panels {
+            match &mut p.nodes {
+                PanelNodes::Tri(n) => n.iter_mut().for_each(map),
+                PanelNodes::Quad(n) => n.iter_mut().for_each(map),
+            }
+        }
+        for g in &mut self.groups {
+            g.nodes.iter_mut().for_each(map);
+            g.nodes.sort_unstable();
+            g.nodes.dedup();
+        }
+        for w in &mut self.weights {
+            map(&mut w.node);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Nodes 0..5 on the x axis, lines 0-1, 1-2 and 3-4, a triangle 2-3-4, group `g` on 1, 3
+    /// and 4, a weight on 4; welding the tail [3, 4] onto [1, 0] leaves three nodes and
+    /// the lines 0-1, 1-2, 1-0, the triangle 2-1-0, the group on 0 and 1, the weight on 0.
+    #[test]
+    fn weld_tail_moves_every_reference_to_the_targets() {
+        let line = |a, b| LineElement {
+            nodes: [a, b],
+            group: 0,
+            object: 0,
+            copy: 0,
+            rest_length: None,
+            section_scale: 1.0,
+        };
+        let mut m = Mesh {
+            nodes: (0..5).map(|i| Point3::new(i as f64, 0.0, 0.0)).collect(),
+            node_owner: vec![(0, 0); 5],
+            lines: vec![line(0, 1), line(1, 2), line(3, 4)],
+            panels: vec![Panel {
+                nodes: PanelNodes::Tri([2, 3, 4]),
+                group: 0,
+                object: 0,
+                copy: 0,
+                uv: None,
+            }],
+            groups: vec![Group {
+                name: "g".into(),
+                role: Role::LineNodes,
+                object: 0,
+                lines: vec![],
+                panels: vec![],
+                nodes: vec![1, 3, 4],
+                section: None,
+            }],
+            weights: vec![PointWeight {
+                node: 4,
+                weight: 1.0,
+                group: 0,
+            }],
+            ..Default::default()
+        };
+        m.weld_tail(&[1, 0]);
+        assert_eq!(m.nodes.len(), 3);
+        assert_eq!(m.node_owner.len(), 3);
+        let lines: Vec<[usize; 2]> = m.lines.iter().map(|l| l.nodes).collect();
+        assert_eq!(lines, vec![[0, 1], [1, 2], [1, 0]]);
+        assert_eq!(m.panels[0].nodes, PanelNodes::Tri([2, 1, 0]));
+        assert_eq!(m.groups[0].nodes, vec![0, 1]);
+        assert_eq!(m.weights[0].node, 0);
+    }
 }

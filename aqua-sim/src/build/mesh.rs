@@ -5,7 +5,7 @@
 use crate::error::{Result, SimError};
 use crate::scene::{NetHydro, Scene};
 use aqua_hydro::WakeModelId;
-use aqua_mesh::{Fairlead, FarmCounts, Mesh, PanelNodes};
+use aqua_mesh::{Fairlead, FarmCounts, Mesh};
 use std::collections::{BTreeMap, HashMap};
 
 fn input(msg: impl Into<String>) -> SimError {
@@ -59,35 +59,6 @@ fn group_names_hint(mesh: &Mesh) -> String {
         names.push("…".into());
     }
     names.join(", ")
-}
-
-/// Merges the last node of the mesh into `target` (a line's fairlead onto an existing node).
-fn weld_last_node(mesh: &mut Mesh, target: usize) {
-    let dup = mesh.nodes.len() - 1;
-    mesh.nodes.pop();
-    mesh.node_owner.pop();
-    let map = |n: &mut usize| {
-        if *n == dup {
-            *n = target;
-        }
-    };
-    for l in &mut mesh.lines {
-        l.nodes.iter_mut().for_each(map);
-    }
-    for p in &mut mesh.panels {
-        match &mut p.nodes {
-            PanelNodes::Tri(n) => n.iter_mut().for_each(map),
-            PanelNodes::Quad(n) => n.iter_mut().for_each(map),
-        }
-    }
-    for g in &mut mesh.groups {
-        g.nodes.iter_mut().for_each(map);
-        g.nodes.sort_unstable();
-        g.nodes.dedup();
-    }
-    for w in &mut mesh.weights {
-        map(&mut w.node);
-    }
 }
 
 pub(crate) fn default_name(given: &Option<String>, kind: &str, i: usize) -> String {
@@ -385,7 +356,7 @@ fn add_line(
     }
     m.append("line", i, c.line, p.build_with(fair_pos, seabed_z))?;
     if let Some(target) = weld_to {
-        weld_last_node(&mut m.mesh, target);
+        m.mesh.weld_tail(&[target]);
     }
     Ok(())
 }

@@ -401,10 +401,30 @@ fn net_nodes(mesh: &Mesh) -> Vec<(String, Vec<usize>)> {
 /// anchor or laid chain) [m]: 1e-3·h.
 const BELOW_SEABED_TOLERANCE: f64 = 1e-3;
 
-/// An error naming the object whose as-built geometry lies below the seabed z = −h [m] by
-/// more than [`BELOW_SEABED_TOLERANCE`]·h (the penalty bed would throw it up, or a cage was
-/// made deeper than the sea).
-fn below_seabed(mesh: &Mesh, h: f64) -> std::result::Result<(), String> {
+/// An object whose as-built geometry lies below the seabed z = −h [m] by more than
+/// [`BELOW_SEABED_TOLERANCE`]·h (the penalty bed would throw it up, or a cage was made deeper
+/// than the sea).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "'{object}' reaches below the seabed as built: its lowest node is at z = {lowest:.3} m, the \
+     seabed at z = {seabed:.3} m (sea.depth = {depth}); {count} node(s) lie below it. Make the \
+     structure shallower (a cage's depth and cone, a line's anchor) or the sea deeper"
+)]
+struct BelowSeabed {
+    /// The object of the lowest node.
+    object: String,
+    /// z of the lowest node [m].
+    lowest: f64,
+    /// z of the seabed, −h [m].
+    seabed: f64,
+    /// The water depth h [m].
+    depth: f64,
+    /// Nodes below the seabed.
+    count: usize,
+}
+
+/// [`BelowSeabed`] for the object of the lowest node below the seabed z = −h, if any.
+fn below_seabed(mesh: &Mesh, h: f64) -> std::result::Result<(), BelowSeabed> {
     let tol = BELOW_SEABED_TOLERANCE * h;
     let lowest = (0..mesh.nodes.len())
         .filter(|&n| mesh.nodes[n].z < -h - tol)
@@ -416,13 +436,13 @@ fn below_seabed(mesh: &Mesh, h: f64) -> std::result::Result<(), String> {
         .and_then(|&(o, _)| mesh.objects.get(o as usize))
         .map(|o| o.name.as_str())
         .unwrap_or("?");
-    let count = mesh.nodes.iter().filter(|p| p.z < -h - tol).count();
-    Err(format!(
-        "'{object}' reaches below the seabed as built: its lowest node is at z = {:.3} m, the \
-         seabed at z = {:.3} m (sea.depth = {h}); {count} node(s) lie below it. Make the \
-         structure shallower (a cage's depth and cone, a line's anchor) or the sea deeper",
-        mesh.nodes[n].z, -h
-    ))
+    Err(BelowSeabed {
+        object: object.to_string(),
+        lowest: mesh.nodes[n].z,
+        seabed: -h,
+        depth: h,
+        count: mesh.nodes.iter().filter(|p| p.z < -h - tol).count(),
+    })
 }
 
 /// Anchor and fairlead nodes and end elements of every `[[line]]` object.

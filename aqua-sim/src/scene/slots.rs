@@ -151,8 +151,10 @@ impl Ctx<'_> {
             let keys: SlotKeys = Value::Table(split_keys(&mut t, SLOT_KEYS))
                 .try_into()
                 .map_err(|e: toml::de::Error| err(e.to_string().trim().to_string()))?;
-            let row = in_grid("row", keys.row, params.rows, "rows").map_err(&err)?;
-            let column = in_grid("column", keys.column, params.columns, "columns").map_err(&err)?;
+            let grid_err = |e: GridIndexError| err(e.to_string());
+            let row = in_grid("row", keys.row, params.rows, "rows").map_err(grid_err)?;
+            let column =
+                in_grid("column", keys.column, params.columns, "columns").map_err(grid_err)?;
             if let Some((first, first_line)) = seen.insert((row, column), (k, at)) {
                 return Err(err(format!(
                     "row = {row}, column = {column}: the cell is already given by [[farm.slot]] \
@@ -175,7 +177,9 @@ impl Ctx<'_> {
                     let m = format!(" (row {row}, column {column}): {m}");
                     self.err("farm", i, at, format!("[[farm.slot]] #{}{m}", k + 1))
                 };
-                let cage = self.slot_cage(base, t).map_err(&at_cell)?;
+                let cage = self
+                    .slot_cage(base, t)
+                    .map_err(|e| at_cell(e.to_string()))?;
                 params
                     .check_cage("cage", &cage.params)
                     .map_err(|e| at_cell(format!("{e}")))?;
@@ -189,24 +193,16 @@ impl Ctx<'_> {
         Ok(out)
     }
 
-    /// A slot's cage typed from `base` with `slot` over it; the message of a bad key.
-    fn slot_cage(&self, base: &Table, slot: Table) -> std::result::Result<CageSpec, String> {
-        let msg = |prefix: &str, e: toml::de::Error| {
-            let m = e.to_string();
-            let m = m.trim();
-            if m.contains("unknown field") {
-                format!(
-                    "{prefix}{m} (a slot takes row, column, empty and the [farm.cage] keys, \
-                     which override [farm.cage] in that cell)"
-                )
-            } else {
-                format!("{prefix}{m}")
-            }
+    /// A slot's cage typed from `base` with `slot` over it; the error of a bad key.
+    fn slot_cage(&self, base: &Table, slot: Table) -> std::result::Result<CageSpec, SlotError> {
+        let msg = |prefix: &'static str, e: toml::de::Error| SlotError::Key {
+            prefix,
+            message: e.to_string().trim().to_string(),
         };
         let mut t = merged_cage(base, slot);
         let hydro = match t.get_mut("net") {
             Some(Value::Table(net)) => split_keys(net, NET_HYDRO_KEYS),
-            Some(other) => return Err(format!("net = {other}: net must be a table of net.* keys")),
+            Some(other) => return Err(SlotError::NetNotTable(other.to_string())),
             None => Table::new(),
         };
         let net_hydro: NetHydro = Value::Table(hydro)
@@ -217,13 +213,52 @@ impl Ctx<'_> {
     }
 }
 
+/// A slot's cage keys that cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+enum SlotError {
+    /// `net` given as something else than a table.
+    #[error("net = {0}: net must be a table of net.* keys")]
+    NetNotTable(String),
+    /// A key the cage does not take or a value of the wrong type (the reader's message).
+    #[error("{prefix}{message}{}", if message.contains("unknown field") {
+        " (a slot takes row, column, empty and the [farm.cage] keys, which override \
+         [farm.cage] in that cell)"
+    } else {
+        ""
+    })]
+    Key {
+        /// `in net: ` for the net's keys.
+        prefix: &'static str,
+        /// The TOML reader's message.
+        message: String,
+    },
+}
+
+/// A slot's `row` or `column` outside the farm's grid.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{key} = {value}: must be 1..={n} (the farm has {count_key} = {n})")]
+struct GridIndexError {
+    key: &'static str,
+    value: i64,
+    n: u32,
+    count_key: &'static str,
+}
+
 /// `v` as a 1-based grid index up to `n` (the farm's `count_key`), or what is valid.
-fn in_grid(key: &str, v: i64, n: u32, count_key: &str) -> std::result::Result<u32, String> {
+fn in_grid(
+    key: &'static str,
+    v: i64,
+    n: u32,
+    count_key: &'static str,
+) -> std::result::Result<u32, GridIndexError> {
     if v >= 1 && v <= i64::from(n) {
         Ok(v as u32)
     } else {
-        Err(format!(
-            "{key} = {v}: must be 1..={n} (the farm has {count_key} = {n})"
-        ))
+        Err(GridIndexError {
+            key,
+            value: v,
+            n,
+            count_key,
+        })
     }
 }

@@ -66,15 +66,32 @@ pub const VALID_NAMES: &str = "net (alias net_panels; dim 2), twines (alias net_
 ropes, tie_lines, top_ring, top_links, bottom_ring, line:<name> (dim 1), fixed, sinkers, tip, \
 anchor, fairlead, net_top, nodes:<name> (dim 0-2)";
 
-/// Role of a physical name of dimension `dim`; `Err(reason)` if unknown or the wrong dimension.
-fn classify(name: &str, dim: i32) -> std::result::Result<Target, String> {
-    let need = |ok: bool, what: &str, t: Target| {
+/// Why a physical name has no role.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+enum RoleError {
+    /// A role's name on a group of another dimension.
+    #[error("physical group `{name}` has dimension {dim}, but role `{name}` needs {need}")]
+    Dimension {
+        name: String,
+        dim: i32,
+        need: &'static str,
+    },
+    /// A name that is no role.
+    #[error("unknown physical group name `{0}`")]
+    Unknown(String),
+}
+
+/// Role of a physical name of dimension `dim`; an error if unknown or the wrong dimension.
+fn classify(name: &str, dim: i32) -> std::result::Result<Target, RoleError> {
+    let need = |ok: bool, need: &'static str, t: Target| {
         if ok {
             Ok(t)
         } else {
-            Err(format!(
-                "physical group `{name}` has dimension {dim}, but role `{name}` needs {what}"
-            ))
+            Err(RoleError::Dimension {
+                name: name.to_string(),
+                dim,
+                need,
+            })
         }
     };
     let line_roles = [
@@ -124,7 +141,7 @@ fn classify(name: &str, dim: i32) -> std::result::Result<Target, String> {
                     Target::Nodes(u.into(), Role::UserNodes),
                 );
             }
-            Err(format!("unknown physical group name `{name}`"))
+            Err(RoleError::Unknown(name.to_string()))
         }
     }
 }
