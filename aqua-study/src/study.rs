@@ -214,7 +214,7 @@ impl RunRows {
     }
 
     /// The metric of this run, or why there is none.
-    pub fn metric(&self, m: &Metric) -> std::result::Result<f64, String> {
+    pub fn metric(&self, m: &Metric) -> std::result::Result<f64, MetricMissing> {
         let stat = match m.stat {
             Stat::Auto if self.dynamic => Stat::Absmax,
             Stat::Auto => Stat::Static,
@@ -240,7 +240,7 @@ impl RunRows {
             Stat::Static if self.first_dynamic == 1 || !self.dynamic => {
                 &self.rows[..1.min(self.rows.len())]
             }
-            Stat::Static => return Err("the run has no static equilibrium".into()),
+            Stat::Static => return Err(MetricMissing::NoStatic),
             _ if self.dynamic => &self.rows[self.first_dynamic.min(self.rows.len())..],
             _ => &self.rows[..],
         };
@@ -248,15 +248,12 @@ impl RunRows {
             .iter()
             .map(|r| self.value(r, &m.column))
             .collect::<Option<Vec<f64>>>()
-            .ok_or_else(|| {
-                format!(
-                    "no column {} in summary.csv (columns: {}; F_net, R)",
-                    m.column,
-                    self.columns.join(", ")
-                )
+            .ok_or_else(|| MetricMissing::NoColumn {
+                column: m.column.clone(),
+                columns: self.columns.join(", "),
             })?;
         let Some(&last) = vals.last() else {
-            return Err("the run wrote no output step".into());
+            return Err(MetricMissing::NoRows);
         };
         Ok(match stat {
             Stat::Max => vals.iter().copied().fold(f64::NEG_INFINITY, f64::max),
@@ -633,7 +630,7 @@ fn evaluate(study: &mut Study, metrics: &[Metric], settings: &[Vec<usize>]) {
                         est.method = "richardson";
                     }
                 }
-                Err(why) => est.notes[a] = Some(why),
+                Err(why) => est.notes[a] = Some(why.to_string()),
             }
         }
         study.estimates.push(est);
@@ -693,12 +690,89 @@ fn mark_negligible(estimates: &mut [Estimate], metrics: &[Metric]) {
 /// The lowest observed order that is extrapolated.
 pub const MIN_ORDER: f64 = 0.9;
 
+/// Why a run has no value of a metric.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MetricMissing {
+    /// A static metric of a run without a static phase.
+    #[error("the run has no static equilibrium")]
+    NoStatic,
+    /// The column is not in summary.csv.
+    #[error("no column {column} in summary.csv (columns: {columns}; F_net, R)")]
+    NoColumn {
+        /// The column asked for.
+        column: String,
+        /// The columns there are, comma separated.
+        columns: String,
+    },
+    /// summary.csv has no row.
+    #[error("the run wrote no output step")]
+    NoRows,
+}
+
+/// Why the finest value of a ladder is not extrapolated (the finest run then stands).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NoExtrapolation {
+    /// Fewer than three values.
+    #[error("fewer than three values: the finest run stands")]
+    TooFew,
+    /// A value of the ladder is not a number.
+    #[error("not numeric: the finest run stands")]
+    NotNumeric,
+    /// A value of the ladder is zero or negative.
+    #[error("values not all positive: the finest run stands")]
+    NotPositive,
+    /// The values neither rise nor fall throughout.
+    #[error("not monotone: the finest run stands")]
+    NotMonotone,
+    /// The last three values are not a geometric sequence.
+    #[error("not geometric (ratios {r1:.3} and {r2:.3}): the finest run stands")]
+    NotGeometric {
+        /// The two refinement ratios.
+        r1: f64,
+        /// The second ratio.
+        r2: f64,
+    },
+    /// A run of the last three has no value.
+    #[error("a run of the last three failed: the finest run stands")]
+    RunFailed,
+    /// The three runs agree to round-off.
+    #[error("converged: the runs agree to round-off")]
+    Converged,
+    /// The finest two runs agree exactly while the coarser differs.
+    #[error("the finest two runs agree exactly: no order to observe")]
+    FinestEqual,
+    /// The differences change sign or grow.
+    #[error(
+        "differences {e12:.3e}, {e23:.3e} change sign or do not shrink: not yet in the \
+         asymptotic range, the finest run stands"
+    )]
+    NotAsymptotic {
+        /// Coarse minus middle value.
+        e12: f64,
+        /// Middle minus finest value.
+        e23: f64,
+    },
+    /// The observed order is below [`MIN_ORDER`].
+    #[error(
+        "observed order {order:.2} < {min}: too low to extrapolate safely, the finest run \
+         stands",
+        min = MIN_ORDER
+    )]
+    OrderTooLow {
+        /// The observed order.
+        order: f64,
+    },
+}
+
 /// Observed order and Richardson correction of the finest value of a ladder (values coarse to
 /// fine; `f` the metric at each), or why there is none.
-pub fn richardson(values: &[Value], f: &[Option<f64>]) -> std::result::Result<(f64, f64), String> {
+pub fn richardson(
+    values: &[Value],
+    f: &[Option<f64>],
+) -> std::result::Result<(f64, f64), NoExtrapolation> {
     let n = values.len();
     if n < 3 {
-        return Err("fewer than three values: the finest run stands".into());
+        return Err(NoExtrapolation::TooFew);
     }
     let x: Vec<f64> = values[n - 3..]
         .iter()
@@ -708,53 +782,45 @@ pub fn richardson(values: &[Value], f: &[Option<f64>]) -> std::result::Result<(f
             _ => None,
         })
         .collect::<Option<Vec<f64>>>()
-        .ok_or("not numeric: the finest run stands")?;
+        .ok_or(NoExtrapolation::NotNumeric)?;
     if x.iter().any(|v| !(*v > 0.0)) {
-        return Err("values not all positive: the finest run stands".into());
+        return Err(NoExtrapolation::NotPositive);
     }
     let h: Vec<f64> = if x[0] > x[1] && x[1] > x[2] {
         x
     } else if x[0] < x[1] && x[1] < x[2] {
         x.iter().map(|v| 1.0 / v).collect()
     } else {
-        return Err("not monotone: the finest run stands".into());
+        return Err(NoExtrapolation::NotMonotone);
     };
     let (r1, r2) = (h[0] / h[1], h[1] / h[2]);
     if ((r1 - r2) / r2).abs() > 0.01 {
-        return Err(format!(
-            "not geometric (ratios {r1:.3} and {r2:.3}): the finest run stands"
-        ));
+        return Err(NoExtrapolation::NotGeometric { r1, r2 });
     }
     let [Some(f1), Some(f2), Some(f3)] = [f[n - 3], f[n - 2], f[n - 1]] else {
-        return Err("a run of the last three failed: the finest run stands".into());
+        return Err(NoExtrapolation::RunFailed);
     };
     let r = (r1 * r2).sqrt();
     let (e12, e23) = (f1 - f2, f2 - f3);
     if e12.abs().max(e23.abs()) <= 1e-9 * f3.abs() {
-        return Err("converged: the runs agree to round-off".into());
+        return Err(NoExtrapolation::Converged);
     }
     if e23 == 0.0 {
         return if e12 == 0.0 {
             Ok((f64::INFINITY, 0.0))
         } else {
-            Err("the finest two runs agree exactly: no order to observe".into())
+            Err(NoExtrapolation::FinestEqual)
         };
     }
     let q = e12 / e23;
     if !(q > 1.0) {
-        return Err(format!(
-            "differences {e12:.3e}, {e23:.3e} change sign or do not shrink: not yet in the \
-             asymptotic range, the finest run stands"
-        ));
+        return Err(NoExtrapolation::NotAsymptotic { e12, e23 });
     }
     let p = q.ln() / r.ln();
     // Below first order the correction 1/(rᵖ − 1) of the last difference grows without bound
     // and the ladder is pre-asymptotic in practice: report, do not extrapolate.
     if p < MIN_ORDER {
-        return Err(format!(
-            "observed order {p:.2} < {MIN_ORDER}: too low to extrapolate safely, the finest run \
-             stands"
-        ));
+        return Err(NoExtrapolation::OrderTooLow { order: p });
     }
     Ok((p, (f3 - f2) / (r.powf(p) - 1.0)))
 }
@@ -879,11 +945,12 @@ mod tests {
         assert!(richardson(&floats(&[0.4, 0.2, 0.1]), &[Some(1.0), None, Some(0.6)]).is_err());
         // Order 0.5: refused rather than amplified.
         let f: Vec<Option<f64>> = [0.4f64, 0.2, 0.1].iter().map(|h| Some(h.sqrt())).collect();
+        let why = richardson(&floats(&[0.4, 0.2, 0.1]), &f).unwrap_err();
         assert!(
-            richardson(&floats(&[0.4, 0.2, 0.1]), &f)
-                .unwrap_err()
-                .contains("too low")
+            matches!(why, NoExtrapolation::OrderTooLow { order } if (order - 0.5).abs() < 1e-9),
+            "{why:?}"
         );
+        assert!(why.to_string().contains("0.50 < 0.9: too low"), "{why}");
         let words = vec![
             Value::String("hht".into()),
             Value::String("rk4".into()),
