@@ -238,15 +238,23 @@ fn chain_cells() {
         warned(&o.outcome),
         "the slack chain's snap loads are not resolved at 0.1 s"
     );
-    // A taut chain (length = chord) with EA = 1e10 at dt = 0.5 s: a clear error.
+    // A taut chain (length = chord) with EA = 1e10 at dt = 0.5 s: HHT-α either stops with a
+    // clear error or, with its energy-consistent force, completes and warns that its
+    // extremes are unreliable — never silently.
     let o = cell(
         &dir,
         "taut",
         &text,
         &["dt=0.5", "line.0.length=109.66", "line.0.ea=1e10"],
     );
-    let e = o.outcome.error.expect("the taut chain at dt = 0.5 s stops");
-    assert!(e.contains("dynamic step failed"), "{e}");
+    match &o.outcome.error {
+        Some(e) => assert!(e.contains("dynamic step failed"), "{e}"),
+        None => assert!(
+            warned(&o.outcome),
+            "the taut chain at dt = 0.5 s completed without a warning: {:?}",
+            o.outcome.diagnostics
+        ),
+    }
 }
 
 /// The reference cage scaled to 24 m circumference, 5 m deep, 2 m elements, 0.5 m/s current and
