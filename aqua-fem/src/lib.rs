@@ -127,6 +127,7 @@ pub mod loads;
 pub mod model;
 pub mod motion;
 mod net_triangle;
+mod rigid_body;
 mod rod;
 mod seabed;
 pub mod state;
@@ -154,6 +155,7 @@ pub use motion::{ExternalMotion, Keyframes, Motion, TableSpline, smooth_ramp};
 pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };
+pub use rigid_body::{BodyPose, LINK_STIFFNESS_FACTOR, RigidBody, RigidBodySpec};
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use seabed::{
     DEFAULT_BED_DAMPING, DEFAULT_BED_DAMPING_DEPTH, DEFAULT_BED_STIFFNESS, InvalidSeabedKey,

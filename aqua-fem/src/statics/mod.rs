@@ -382,6 +382,13 @@ fn node_axial_stiffness(model: &Model) -> Vec<f64> {
             d[nd] += k * (gu[j] * gu[j] + gv[j] * gv[j]);
         }
     }
+    // Rigid links: k on the point and the centre, k·|p|² on the rotation carrier.
+    for l in &model.links {
+        let p2: f64 = l.offset.iter().map(|c| c * c).sum();
+        d[l.node] += l.stiffness;
+        d[l.centre] += l.stiffness;
+        d[l.rotation] += l.stiffness * p2.max(1.0);
+    }
     d
 }
 
