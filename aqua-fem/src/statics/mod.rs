@@ -471,6 +471,18 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 noise[nd] += f * f;
             }
         }
+        // Rigid links: x_p − x_c − R·p is exact to about ε_mach·(max(|x_p|, |x_c|) + |p|).
+        for l in &self.model.links {
+            let xm = [x[l.node], x[l.centre]]
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let p = l.offset.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let t = f64::EPSILON * l.stiffness * (xm + p);
+            noise[l.node] += t * t;
+            noise[l.centre] += t * t;
+            noise[l.rotation] += (t * p) * (t * p);
+        }
         let mut s2 = 0.0;
         for &gd in &self.sys.dof_of_free {
             s2 += noise[gd / 3];
@@ -523,6 +535,14 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             sum += t.uv_area()
                 * (ev.u.tension.abs() * (xm * su + ev.u.length)
                     + ev.v.tension.abs() * (xm * sv + ev.v.length));
+        }
+        for (l, ev) in self.model.links.iter().zip(&self.sys.link) {
+            let xm = [self.x[l.node], self.x[l.centre]]
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let p = l.offset.iter().map(|c| c * c).sum::<f64>().sqrt();
+            sum += l.stiffness * ev.stretch * (xm + p);
         }
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             sum += self.f_frozen[f].abs() * self.x[gd / 3][gd % 3].abs();
