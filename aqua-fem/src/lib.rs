@@ -39,8 +39,8 @@
 //! * Rigid body (docs/theory/fem.md#rigid-bodies): a centre node with the mass M and a
 //!   rotation carrier whose coordinates are a rotation vector ψ, R = exp([ψ − ψ_ref]×)·R_ref
 //!   from the last accepted state; rotational inertia R_ref·I·R_refᵀ as a 3×3 mass block on
-//!   the carrier; each held point joined by a rigid link W = ½k·|x_p − x_c − R·p̄|², exact
-//!   9×9 tangent by automatic differentiation.
+//!   the carrier with the gyroscopic moment ω×(I_w·ω); each held point joined by a rigid
+//!   link W = ½k·|x_p − x_c − R·p̄|², exact 9×9 tangent by automatic differentiation.
 //! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
 //! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
 //! * Seabed friction in dynamics (regularised Coulomb, docs/theory/fem.md#seabed-friction):

@@ -163,7 +163,7 @@ impl System {
         }
         self.add_rod_forces(model);
         self.add_net_forces(model);
-        self.add_body_terms(model);
+        self.add_body_terms(model, v, o.dynamic);
         for e in 0..nl {
             let nn = self.load_nn[e];
             let chunk = &self.load_buf[e * self.load_stride..];
@@ -343,6 +343,9 @@ impl System {
         }
         if cf.k != 0.0 {
             self.add_link_tangents(cf.k);
+        }
+        if cf.c != 0.0 {
+            self.add_gyroscopic_damping(model, cf.c);
         }
     }
 

@@ -54,9 +54,10 @@ impl System {
         Ok(())
     }
 
-    /// Adds the link forces of the last evaluation to f_int and each body's rotational
-    /// inertia R_ref·I·R_refᵀ to the mass block of its rotation carrier.
-    pub(super) fn add_body_terms(&mut self, model: &Model) {
+    /// Adds the link forces of the last evaluation to f_int, each body's rotational
+    /// inertia I_w = R_ref·I·R_refᵀ to the mass block of its rotation carrier and, in dynamics,
+    /// its gyroscopic moment ω×(I_w·ω) at the carrier's velocity ω to f_int.
+    pub(super) fn add_body_terms(&mut self, model: &Model, v: &[[f64; 3]], dynamic: bool) {
         for (l, ev) in model.links.iter().zip(&self.link) {
             for k in 0..3 {
                 self.fint[l.node][k] += ev.force[k];
@@ -64,11 +65,47 @@ impl System {
                 self.fint[l.rotation][k] += ev.force[6 + k];
             }
         }
-        for (b, frame) in model.bodies.iter().zip(&self.body_frames) {
+        for ((b, frame), gc) in model
+            .bodies
+            .iter()
+            .zip(&self.body_frames)
+            .zip(self.gyro_c.iter_mut())
+        {
             let iw = frame.world_inertia(&b.inertia);
             for (row, irow) in self.added[b.rotation_node].iter_mut().zip(iw) {
                 for (m, i) in row.iter_mut().zip(irow) {
                     *m += i;
+                }
+            }
+            *gc = [[0.0; 3]; 3];
+            if dynamic {
+                let w = v[b.rotation_node];
+                let h = rigid_body::matvec(&iw, w);
+                let g = cross(w, h);
+                for k in 0..3 {
+                    self.fint[b.rotation_node][k] += g[k];
+                }
+                // ∂(ω×h)/∂ω = [ω]×·I_w − [h]×.
+                let (sw, sh) = (skew(w), skew(h));
+                let swi = rigid_body::matmul(&sw, &iw);
+                for i in 0..3 {
+                    for j in 0..3 {
+                        gc[i][j] = swi[i][j] - sh[i][j];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds c·∂(ω×(I_w·ω))/∂ω of each body to its carrier's block of the Jacobian.
+    pub(super) fn add_gyroscopic_damping(&mut self, model: &Model, c: f64) {
+        for (b, gc) in model.bodies.iter().zip(&self.gyro_c) {
+            let p = &self.node_pos[b.rotation_node];
+            for i in 0..3 {
+                for j in 0..3 {
+                    if p[3 * i + j] != NONE {
+                        self.values[p[3 * i + j]] += c * gc[i][j];
+                    }
                 }
             }
         }
@@ -144,4 +181,16 @@ pub(crate) fn body_poses_with(
             f.pose(x[b.node], x[r], v[b.node], v[r])
         })
         .collect()
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn skew(a: [f64; 3]) -> [[f64; 3]; 3] {
+    [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]]
 }

@@ -286,6 +286,7 @@ impl System {
             link_pos,
             link: vec![LinkEval::default(); model.links.len()],
             body_frames: vec![BodyFrame::default(); model.bodies.len()],
+            gyro_c: vec![[[0.0; 3]; 3]; model.bodies.len()],
             fint: vec![[0.0; 3]; n],
             fext: vec![[0.0; 3]; n],
             fhydro: vec![[0.0; 3]; n],

@@ -98,6 +98,8 @@ pub(crate) struct System {
     /// Reference frame of each rigid body: its orientation and carrier value at the last
     /// accepted state (as built, R = I and ψ = 0, until a solver accepts one).
     body_frames: Vec<BodyFrame>,
+    /// Per rigid body: ∂(ω×(I_w·ω))/∂ω of the last dynamic evaluation [kg·m²/s].
+    gyro_c: Vec<[[f64; 3]; 3]>,
     /// Internal (elastic + axial damping + Rayleigh) force, q sense [N].
     pub fint: Vec<[f64; 3]>,
     /// External forces on the structure: gravity, point forces, water loads, seabed [N].
