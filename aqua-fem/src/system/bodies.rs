@@ -130,12 +130,6 @@ impl System {
         self.link.iter().map(|l| l.energy).sum()
     }
 
-    /// The largest stretch |x_p − x_c − R·p| of a rigid link at the last evaluation [m].
-    #[allow(dead_code)]
-    pub(crate) fn max_link_stretch(&self) -> f64 {
-        self.link.iter().map(|l| l.stretch).fold(0.0, f64::max)
-    }
-
     /// Moves each body's reference frame to its orientation in the accepted state `x`
     /// (R_ref ← R, ψ_ref ← ψ; the state is not touched, docs/theory/fem.md#rigid-bodies).
     pub(crate) fn accept_body_frames(&mut self, model: &Model, x: &[[f64; 3]]) {
