@@ -7,6 +7,7 @@ use crate::error::{FemError, Result, invalid};
 use crate::model::*;
 use crate::motion::{Motion, check_finite3};
 use crate::net_triangle::{NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection};
+use crate::rigid_body::{self, LINK_STIFFNESS_FACTOR, Link, RigidBody, RigidBodySpec};
 use crate::rod::{self, EdgeFrame, RodEdge, RodVertex};
 use std::collections::HashMap;
 
@@ -25,6 +26,7 @@ pub struct ModelBuilder {
     rods: Rods,
     net_triangles: Vec<NetTriangle>,
     net_groups: Vec<NetTriangleGroup>,
+    bodies: Vec<RigidBody>,
 }
 
 impl ModelBuilder {
@@ -439,6 +441,97 @@ impl ModelBuilder {
         Ok(id)
     }
 
+    /// Adds a free rigid body (docs/theory/fem.md#rigid-bodies): creates its centre-of-gravity
+    /// node at `spec.centre`, which carries the mass M (and its weight), and its rotation
+    /// carrier, whose three coordinates are the body's rotation vector [rad]; holds each node
+    /// of `spec.points` to the body by a rigid link at its as-built offset from the centre.
+    /// A held point may be free, fixed or prescribed (a body hung from a pinned point); it
+    /// must be a node of the structure (not a rod's twist carrier or ghost node, not another
+    /// body's centre or carrier) held by no other body, and a free one needs mass of its own
+    /// (an element or a point body) like any free node. Returns the body's index.
+    pub fn add_rigid_body(&mut self, spec: RigidBodySpec) -> Result<usize> {
+        rigid_body::validate(&spec)?;
+        let bad = |key: &str, value: String, valid: String| FemError::RigidBody {
+            body: spec.name.clone(),
+            key: key.to_string(),
+            value,
+            valid,
+        };
+        if self.bodies.iter().any(|b| b.name == spec.name) {
+            return Err(bad(
+                "name",
+                format!("{:?}", spec.name),
+                "a name no other rigid body has".into(),
+            ));
+        }
+        let n = self.nodes.len();
+        let mut points = Vec::with_capacity(spec.points.len());
+        for (j, &p) in spec.points.iter().enumerate() {
+            let key = format!("points[{j}]");
+            if p >= n {
+                return Err(bad(
+                    &key,
+                    format!("node {p}"),
+                    format!("an existing node (0 to {})", n.saturating_sub(1)),
+                ));
+            }
+            if spec.points[..j].contains(&p) {
+                return Err(bad(
+                    &key,
+                    format!("node {p}"),
+                    "each node listed once".into(),
+                ));
+            }
+            let auxiliary = self.rods.edges.iter().any(|e| e.carrier == p)
+                || self.rods.holders.contains(&p)
+                || self
+                    .bodies
+                    .iter()
+                    .any(|b| b.node == p || b.rotation_node == p);
+            if auxiliary {
+                return Err(bad(
+                    &key,
+                    format!("node {p}"),
+                    "a node of the structure, not a rod's twist carrier or ghost node nor a \
+                     body's centre or rotation carrier"
+                        .into(),
+                ));
+            }
+            if let Some(other) = self
+                .bodies
+                .iter()
+                .find(|b| b.points.iter().any(|&(q, _)| q == p))
+            {
+                return Err(bad(
+                    &key,
+                    format!("node {p}"),
+                    format!(
+                        "a node no other body holds (rigid body '{}' holds it)",
+                        other.name
+                    ),
+                ));
+            }
+            points.push((p, sub3(self.nodes[p], spec.centre)));
+        }
+        let node = self.add_node(spec.centre)?;
+        let rotation_node = self.add_node([0.0; 3])?;
+        self.bodies.push(RigidBody {
+            name: spec.name,
+            node,
+            rotation_node,
+            mass: spec.mass,
+            inertia: spec.inertia,
+            points,
+        });
+        Ok(self.bodies.len() - 1)
+    }
+
+    /// The rigid bodies added so far (their centre and rotation carrier nodes, e.g. to put a
+    /// point force or a load element on them before building).
+    pub fn rigid_bodies(&self) -> &[RigidBody] {
+        &self.bodies
+    }
+
     /// Holds a node at its as-built position in the given DOFs.
     pub fn fix(&mut self, node: usize, dofs: Dofs) -> Result<()> {
         self.check_node("fix", node)?;
@@ -521,6 +614,13 @@ impl ModelBuilder {
         for &g in &self.rods.holders {
             attached[g] = true;
         }
+        for b in &self.bodies {
+            attached[b.node] = true;
+            attached[b.rotation_node] = true;
+            for &(p, _) in &b.points {
+                attached[p] = true;
+            }
+        }
         if let Some(i) = attached.iter().position(|a| !a) {
             return Err(FemError::InvalidModel(format!(
                 "node {i} at {:?} belongs to no element and carries no point body",
@@ -556,8 +656,33 @@ impl ModelBuilder {
                 point_force[p.node][k] += p.force[k];
             }
         }
+        // A rigid body's mass on its centre; its inertia is a full block on the rotation
+        // carrier, formed at each evaluation (docs/theory/fem.md#rigid-bodies).
+        for b in &self.bodies {
+            lumped_mass[b.node] += b.mass;
+            point_mass[b.node] += b.mass;
+        }
         for i in 0..n {
             weight[i][2] = -lumped_mass[i] * env.gravity;
+        }
+        let mut rotation_of = vec![None; n];
+        let mut links = Vec::new();
+        if !self.bodies.is_empty() {
+            let member = member_stiffness(&self.elements, &self.net_triangles, n);
+            for (ib, b) in self.bodies.iter().enumerate() {
+                rotation_of[b.rotation_node] = Some(ib);
+                let floor = rigid_body::link_floor(b.mass, env.gravity, &b.points);
+                for &(p, offset) in &b.points {
+                    links.push(Link {
+                        body: ib,
+                        node: p,
+                        centre: b.node,
+                        rotation: b.rotation_node,
+                        offset,
+                        stiffness: (LINK_STIFFNESS_FACTOR * member[p]).max(floor),
+                    });
+                }
+            }
         }
         // Spin inertia of the rods' twists, on their carriers (weightless).
         for &(c, j) in &self.rods.carrier_inertia {
@@ -607,6 +732,9 @@ impl ModelBuilder {
             rods,
             net_triangles: self.net_triangles,
             net_groups: self.net_groups,
+            bodies: self.bodies,
+            links,
+            rotation_of,
             lumped_mass,
             weight,
             point_force,
@@ -616,6 +744,24 @@ impl ModelBuilder {
             mean_length,
         })
     }
+}
+
+/// The largest axial stiffness of the members at each node [N/m]: EA/L0 of its cables, the
+/// taut diagonal A_uv·(a_k² + b_k²)·EA/l_p of its net triangles.
+fn member_stiffness(elements: &[Cable], triangles: &[NetTriangle], n: usize) -> Vec<f64> {
+    let mut d = vec![0.0f64; n];
+    for e in elements {
+        d[e.a] = d[e.a].max(e.ea / e.l0);
+        d[e.b] = d[e.b].max(e.ea / e.l0);
+    }
+    for t in triangles {
+        let (gu, gv) = t.shape_gradients();
+        let k = t.uv_area() * t.twine.ea / t.twine.l0;
+        for (j, &nd) in t.nodes.iter().enumerate() {
+            d[nd] = d[nd].max(k * (gu[j] * gu[j] + gv[j] * gv[j]));
+        }
+    }
+    d
 }
 
 fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -21,6 +21,8 @@ pub(crate) trait Real:
 {
     /// A constant.
     fn cst(v: f64) -> Self;
+    /// The value (without derivatives).
+    fn val(self) -> f64;
     fn sqrt(self) -> Self;
     fn sin(self) -> Self;
     fn cos(self) -> Self;
@@ -31,6 +33,9 @@ pub(crate) trait Real:
 impl Real for f64 {
     fn cst(v: f64) -> Self {
         v
+    }
+    fn val(self) -> f64 {
+        self
     }
     fn sqrt(self) -> Self {
         f64::sqrt(self)
@@ -231,6 +236,9 @@ impl<const N: usize> Real for Dual1<N> {
     fn cst(v: f64) -> Self {
         Self { v, g: [0.0; N] }
     }
+    fn val(self) -> f64 {
+        self.v
+    }
     fn sqrt(self) -> Self {
         let s = self.v.sqrt();
         self.chain(s, 0.5 / s)
@@ -262,6 +270,9 @@ impl<const N: usize> Real for Dual2<N> {
             g: [0.0; N],
             h: [[0.0; N]; N],
         }
+    }
+    fn val(self) -> f64 {
+        self.v
     }
     fn sqrt(self) -> Self {
         let s = self.v.sqrt();

@@ -52,6 +52,29 @@ pub enum FemError {
     /// Structurally bad model (duplicate constraint, unattached node, empty model, ...).
     #[error("invalid model: {0}")]
     InvalidModel(String),
+    /// A rigid body's input is out of range (docs/theory/fem.md#rigid-bodies).
+    #[error("rigid body '{body}': invalid {key} = {value}: {valid}")]
+    RigidBody {
+        /// The body's name.
+        body: String,
+        /// The offending key (`mass [kg]`, `inertia [kg m^2]`, `points`, ...).
+        key: String,
+        /// The value that was given.
+        value: String,
+        /// What would be valid.
+        valid: String,
+    },
+    /// The explicit solver was given a model with rigid bodies: their rotational inertia is a
+    /// full 3×3 block that its lumped (diagonal) mass cannot hold.
+    #[error(
+        "rigid body '{body}': the explicit solver cannot integrate rigid bodies (their \
+         rotational inertia is a full 3x3 block); use the implicit DynamicSolver (HHT-alpha or \
+         the midpoint rule)"
+    )]
+    RigidBodyNeedsImplicit {
+        /// The first body's name.
+        body: String,
+    },
     /// A connected part of the structure is held by nothing (no fixed/prescribed node, no
     /// seabed contact, no restoring load): the static problem is singular.
     #[error(

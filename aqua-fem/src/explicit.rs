@@ -118,6 +118,11 @@ impl<'m> ExplicitSolver<'m> {
         {
             return Err(invalid("output_interval [s]", o, "> 0"));
         }
+        if let Some(b) = model.rigid_bodies().first() {
+            return Err(FemError::RigidBodyNeedsImplicit {
+                body: b.name.clone(),
+            });
+        }
         let n = model.n_nodes();
         for i in 0..n {
             let free = (0..3).any(|k| !model.is_constrained(i, k));

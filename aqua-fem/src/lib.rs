@@ -36,6 +36,11 @@
 //!   ω^j = (κb·m2_j, −κb·m1_j), κb = 2·t_a×t_b/(1 + t_a·t_b), and the twist m across the
 //!   vertex; exact 11×11 tangent by automatic differentiation; a discrete gradient per vertex
 //!   in the energy-consistent midpoint rule.
+//! * Rigid body (docs/theory/fem.md#rigid-bodies): a centre node with the mass M and a
+//!   rotation carrier whose coordinates are a rotation vector ψ, R = exp([ψ − ψ_ref]×)·R_ref
+//!   from the last accepted state; rotational inertia R_ref·I·R_refᵀ as a 3×3 mass block on
+//!   the carrier with the gyroscopic moment ω×(I_w·ω); each held point joined by a rigid
+//!   link W = ½k·|x_p − x_c − R·p̄|², exact 9×9 tangent by automatic differentiation.
 //! * Gravity −μL0g/2 ẑ per element node and −m·g ẑ per point body; constant point forces.
 //! * Seabed z_s = −depth: f_z = max(0, (k_b·δ − c_b·v_z)·d_c·L_i) for δ = z_s − z > 0.
 //! * Seabed friction in dynamics (regularised Coulomb, docs/theory/fem.md#seabed-friction):
@@ -84,9 +89,9 @@
 //!
 //! ## Files
 //! One file per physical law or algorithm: `model.rs` (model, builder), `cable.rs`,
-//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy; `[sea.seabed]`'s `SeabedSettings` and every seabed default), `friction.rs`
+//! `net_triangle.rs`, `bending.rs`, `rod.rs`, `rigid_body.rs`, `seabed.rs` (the seabed's contact law: force, tangent, energy; `[sea.seabed]`'s `SeabedSettings` and every seabed default), `friction.rs`
 //! (seabed friction), `loads.rs` (the provider interface), `motion.rs`, `state.rs`;
-//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`, `net_triangles.rs`,
+//! `system/` (`dofs.rs` numbering and pattern, `assembly.rs`, `rods.rs`, `bodies.rs`, `net_triangles.rs`,
 //! `load_derivatives.rs`, `linear_solver.rs`) with `symmetric.rs` (L·D·Lᵀ and refinement); `statics/`
 //! (`mod.rs` the solver, `settings.rs`, `support.rs` the checks before a solve);
 //! `dynamics/` (`settings.rs`, `step_control.rs`, `energy.rs`, `newton.rs`, and one file per
@@ -127,6 +132,7 @@ pub mod loads;
 pub mod model;
 pub mod motion;
 mod net_triangle;
+mod rigid_body;
 mod rod;
 mod seabed;
 pub mod state;
@@ -154,6 +160,7 @@ pub use motion::{ExternalMotion, Keyframes, Motion, TableSpline, smooth_ramp};
 pub use net_triangle::{
     NetGroupId, NetTriangle, NetTriangleGroup, NetTriangleSection, NetTriangleTwines,
 };
+pub use rigid_body::{BodyPose, LINK_STIFFNESS_FACTOR, RigidBody, RigidBodySpec};
 pub use rod::{EdgeFrame, RodEdge, RodVertex};
 pub use seabed::{
     DEFAULT_BED_DAMPING, DEFAULT_BED_DAMPING_DEPTH, DEFAULT_BED_STIFFNESS, InvalidSeabedKey,

@@ -154,6 +154,10 @@ impl LineRelaxation {
                 eligible[nd] = false;
             }
         }
+        // A rigid link joins its point to the body's centre and carrier, off the chain.
+        for l in &model.links {
+            eligible[l.node] = false;
+        }
         for nodes in sys.load_element_nodes() {
             for &i in nodes {
                 if !eligible[i] {

@@ -6,6 +6,7 @@ use crate::error::{Result, invalid};
 use crate::friction::SeabedFriction;
 use crate::motion::Motion;
 use crate::net_triangle::{NetTriangle, NetTriangleGroup, NetTriangleTwines};
+use crate::rigid_body::{Link, RigidBody};
 use crate::rod::{RodEdge, RodVertex};
 use crate::seabed::SeabedSettings;
 use serde::{Deserialize, Serialize};
@@ -358,7 +359,14 @@ pub struct Model {
     pub(crate) rods: Rods,
     pub(crate) net_triangles: Vec<NetTriangle>,
     pub(crate) net_groups: Vec<NetTriangleGroup>,
-    /// Lumped structural mass per node [kg] (twist carriers: spin inertia [kg·m²]).
+    /// Free rigid bodies (docs/theory/fem.md#rigid-bodies).
+    pub(crate) bodies: Vec<RigidBody>,
+    /// The rigid links of every body's held points.
+    pub(crate) links: Vec<Link>,
+    /// Per node: the body whose rotation carrier it is (filled at build).
+    pub(crate) rotation_of: Vec<Option<usize>>,
+    /// Lumped structural mass per node [kg] (twist carriers: spin inertia [kg·m²]; rotation
+    /// carriers: 0, their inertia is a full block, docs/theory/fem.md#rigid-bodies).
     pub(crate) lumped_mass: Vec<f64>,
     /// Nodal weight vector [N].
     pub(crate) weight: Vec<[f64; 3]>,
@@ -414,12 +422,23 @@ impl Model {
     /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad];
     /// its held coordinates hold nothing of the structure).
     pub fn is_twist_carrier(&self, i: usize) -> bool {
-        self.is_auxiliary(i) && !self.rods.holders.contains(&i)
+        self.rods.auxiliary.get(i).copied().unwrap_or(false) && !self.rods.holders.contains(&i)
     }
-    /// Whether node `i` is a rod's twist carrier (its first coordinate is a twist angle [rad],
-    /// not a position) or a held ghost node of a clamped rod end: not a point of the structure.
+    /// Whether node `i` is a rigid body's rotation carrier (its three coordinates are the
+    /// body's accumulated rotation vector ψ [rad], not a position;
+    /// docs/theory/fem.md#rigid-bodies).
+    pub fn is_rotation_carrier(&self, i: usize) -> bool {
+        self.rotation_of.get(i).is_some_and(|b| b.is_some())
+    }
+    /// Whether node `i` is not a point of the structure: a rod's twist carrier (its first
+    /// coordinate is a twist angle [rad]), a held ghost node of a clamped rod end, or a rigid
+    /// body's rotation carrier (its coordinates are a rotation vector [rad]).
     pub fn is_auxiliary(&self, i: usize) -> bool {
-        self.rods.auxiliary.get(i).copied().unwrap_or(false)
+        self.rods.auxiliary.get(i).copied().unwrap_or(false) || self.is_rotation_carrier(i)
+    }
+    /// Free rigid bodies (docs/theory/fem.md#rigid-bodies).
+    pub fn rigid_bodies(&self) -> &[RigidBody] {
+        &self.bodies
     }
     /// Net triangles (docs/theory/fem.md#net-triangle).
     pub fn net_triangles(&self) -> &[NetTriangle] {

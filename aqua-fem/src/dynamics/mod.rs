@@ -163,12 +163,17 @@ impl<'m> DynamicSolver<'m> {
         }
         for i in 0..n {
             let free = (0..3).any(|k| !model.is_constrained(i, k));
-            if free && model.lumped_mass[i] <= 0.0 {
+            // A rotation carrier's inertia is its body's full block.
+            if free && model.lumped_mass[i] <= 0.0 && !model.is_rotation_carrier(i) {
                 return Err(FemError::InvalidModel(format!(
                     "node {i} has free DOFs but no mass (give it an element or a point mass)"
                 )));
             }
         }
+        // The bodies' reference frames start at the initial state's orientations, taken
+        // about the as-built axes (a static solution's acceptance,
+        // docs/theory/fem.md#rigid-bodies).
+        sys.accept_body_frames(model, &state.x);
         let mut a = std::mem::take(&mut state.a);
         model.apply_constraints(state.t, 1.0, &mut state.x, &mut state.v, &mut a);
         state.a = a;
@@ -283,6 +288,12 @@ impl<'m> DynamicSolver<'m> {
     /// Current state (after the last accepted step).
     pub fn state(&self) -> &State {
         &self.state
+    }
+    /// The pose and velocity of every rigid body in the current state, in the order of
+    /// [`Model::rigid_bodies`] (docs/theory/fem.md#rigid-bodies).
+    pub fn body_poses(&self) -> Vec<crate::rigid_body::BodyPose> {
+        self.sys
+            .body_poses(self.model, &self.state.x, &self.state.v)
     }
     /// Element tensions, strains, reactions, seabed and water forces of the current state.
     pub fn outputs(&self) -> &Outputs {

@@ -1,7 +1,7 @@
 //! A saved state of the implicit integrator (a coupling's save and restore): everything the
 //! next step reads — the state, the previous step's internal forces and loads (the scheme's
-//! residual and the energy ledger use them), the step control, the rods' reference frames, the
-//! members' memory of the energy-consistent HHT-α —
+//! residual and the energy ledger use them), the step control, the rods' and the rigid
+//! bodies' reference frames, the members' memory of the energy-consistent HHT-α —
 //! so that restore → step repeats save → step bit for bit (docs/theory/fem.md#coupling).
 //! Factorisations are not saved: both save and restore ask for a fresh one, so the step after
 //! either starts from the same linear algebra. A checkpoint ([`DynamicSolver::checkpoint`]) is
@@ -11,6 +11,7 @@
 
 use super::{DynamicSolver, Energies, HhtForces, StepControl};
 use crate::error::{FemError, Result};
+use crate::rigid_body::BodyFrame;
 use crate::rod::EdgeFrame;
 use crate::state::{Outputs, State};
 
@@ -33,6 +34,7 @@ pub struct Snapshot {
     peak_len: usize,
     kinetic_free: f64,
     rod_frames: Vec<EdgeFrame>,
+    body_frames: Vec<BodyFrame>,
     hht: Option<HhtForces>,
     t_end: f64,
     extremes: Option<super::extreme_control::ExtremeControl>,
@@ -74,6 +76,7 @@ impl DynamicSolver<'_> {
             peak_len: self.control.peak_tensions.len(),
             kinetic_free: self.kinetic_free,
             rod_frames: self.sys.rod_frames.clone(),
+            body_frames: self.sys.body_frames().to_vec(),
             hht: self.scheme.hht_forces().cloned(),
             t_end: self.st.t_end,
             extremes: self.extremes.clone(),
@@ -82,7 +85,9 @@ impl DynamicSolver<'_> {
 
     /// Puts back a state saved by [`DynamicSolver::save`] of this solver (same model).
     pub fn restore(&mut self, s: &Snapshot) -> Result<()> {
-        if s.state.x.len() != self.state.x.len() || s.rod_frames.len() != self.sys.rod_frames.len()
+        if s.state.x.len() != self.state.x.len()
+            || s.rod_frames.len() != self.sys.rod_frames.len()
+            || s.body_frames.len() != self.sys.body_frames().len()
         {
             return Err(FemError::InvalidModel(format!(
                 "a snapshot of {} nodes restored into a solver of {}",
@@ -108,6 +113,7 @@ impl DynamicSolver<'_> {
         self.control.peak_tensions = peaks;
         self.kinetic_free = s.kinetic_free;
         self.sys.rod_frames.clone_from(&s.rod_frames);
+        self.sys.set_body_frames(&s.body_frames);
         if let Some(f) = &s.hht {
             self.scheme.restore_hht_forces(f);
         }

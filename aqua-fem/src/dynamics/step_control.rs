@@ -178,6 +178,8 @@ impl DynamicSolver<'_> {
         crate::loads::accept_state(provider, self.state.t, &self.state.x)?;
         // The rods' reference frames follow the accepted state too (docs/theory/fem.md#rod).
         self.sys.accept_rod_frames(self.model, &self.state.x);
+        // So do the rigid bodies' (docs/theory/fem.md#rigid-bodies).
+        self.sys.accept_body_frames(self.model, &self.state.x);
         let dt_min = self.st.dt_min.unwrap_or(self.st.dt / 1024.0);
         let t = self.state.t;
         let mut retries = 0;

@@ -382,6 +382,13 @@ fn node_axial_stiffness(model: &Model) -> Vec<f64> {
             d[nd] += k * (gu[j] * gu[j] + gv[j] * gv[j]);
         }
     }
+    // Rigid links: k on the point and the centre, k·|p|² on the rotation carrier.
+    for l in &model.links {
+        let p2: f64 = l.offset.iter().map(|c| c * c).sum();
+        d[l.node] += l.stiffness;
+        d[l.centre] += l.stiffness;
+        d[l.rotation] += l.stiffness * p2.max(1.0);
+    }
     d
 }
 
@@ -464,6 +471,18 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
                 noise[nd] += f * f;
             }
         }
+        // Rigid links: x_p − x_c − R·p is exact to about ε_mach·(max(|x_p|, |x_c|) + |p|).
+        for l in &self.model.links {
+            let xm = [x[l.node], x[l.centre]]
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let p = l.offset.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let t = f64::EPSILON * l.stiffness * (xm + p);
+            noise[l.node] += t * t;
+            noise[l.centre] += t * t;
+            noise[l.rotation] += (t * p) * (t * p);
+        }
         let mut s2 = 0.0;
         for &gd in &self.sys.dof_of_free {
             s2 += noise[gd / 3];
@@ -516,6 +535,14 @@ impl<P: LoadProvider + ?Sized> Ctx<'_, '_, '_, P> {
             sum += t.uv_area()
                 * (ev.u.tension.abs() * (xm * su + ev.u.length)
                     + ev.v.tension.abs() * (xm * sv + ev.v.length));
+        }
+        for (l, ev) in self.model.links.iter().zip(&self.sys.link) {
+            let xm = [self.x[l.node], self.x[l.centre]]
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, c| m.max(c.abs()));
+            let p = l.offset.iter().map(|c| c * c).sum::<f64>().sqrt();
+            sum += l.stiffness * ev.stretch * (xm + p);
         }
         for (f, &gd) in self.sys.dof_of_free.iter().enumerate() {
             sum += self.f_frozen[f].abs() * self.x[gd / 3][gd % 3].abs();

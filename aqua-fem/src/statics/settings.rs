@@ -159,3 +159,13 @@ pub struct StaticSolution {
     /// Solver statistics.
     pub report: StaticReport,
 }
+
+impl StaticSolution {
+    /// The pose of every rigid body at the equilibrium, in the order of
+    /// [`Model::rigid_bodies`](crate::Model::rigid_bodies): statics takes a body's rotation
+    /// vector about its as-built axes, R = exp([ψ]×) (docs/theory/fem.md#rigid-bodies).
+    pub fn body_poses(&self, model: &crate::Model) -> Vec<crate::rigid_body::BodyPose> {
+        let frames = vec![crate::rigid_body::BodyFrame::default(); model.rigid_bodies().len()];
+        crate::system::body_poses_with(model, &frames, &self.state.x, &self.state.v)
+    }
+}

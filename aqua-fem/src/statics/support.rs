@@ -6,7 +6,8 @@ use crate::loads::LoadProvider;
 use crate::model::Model;
 use crate::seabed::BedLaw;
 
-/// The connected parts of the structure (joined by cable, net triangle and load elements):
+/// The connected parts of the structure (joined by cable, net triangle, rod, rigid-link and
+/// load elements):
 /// the lowest node index of each node's part.
 pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Vec<usize> {
     let n = model.n_nodes();
@@ -35,6 +36,13 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
         union(&mut parent, e.nodes[0], e.nodes[1]);
         union(&mut parent, e.nodes[0], e.carrier);
     }
+    for l in &model.links {
+        union(&mut parent, l.node, l.centre);
+        union(&mut parent, l.node, l.rotation);
+    }
+    for b in model.rigid_bodies() {
+        union(&mut parent, b.node, b.rotation_node);
+    }
     for e in 0..provider.n_elements() {
         let nodes = provider.element_nodes(e);
         for w in nodes.windows(2) {
@@ -47,9 +55,10 @@ pub(super) fn parts<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Ve
 }
 
 /// Whether DOF k of node i holds its part: constrained, and not a rod's twist carrier (whose
-/// held coordinates are placeholders, docs/theory/fem.md#rod).
+/// held coordinates are placeholders, docs/theory/fem.md#rod) nor a rigid body's rotation
+/// carrier (a held rotation holds no position, docs/theory/fem.md#rigid-bodies).
 fn holds(model: &Model, i: usize, k: usize) -> bool {
-    model.is_constrained(i, k) && !model.is_twist_carrier(i)
+    model.is_constrained(i, k) && !model.is_twist_carrier(i) && !model.is_rotation_carrier(i)
 }
 
 /// The structure's nodes of part `r` (twist carriers left out).

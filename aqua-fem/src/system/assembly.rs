@@ -85,6 +85,7 @@ impl System {
         }
         self.evaluate_hinges(model, x, o.jacobian.is_some())?;
         self.evaluate_rods(model, x, o.jacobian.is_some())?;
+        self.evaluate_links(model, x, o.jacobian.is_some())?;
         self.evaluate_net_triangles(model, x, v, o)?;
         // Load elements.
         let nl = self.load_nn.len();
@@ -162,6 +163,7 @@ impl System {
         }
         self.add_rod_forces(model);
         self.add_net_forces(model);
+        self.add_body_terms(model, v, o.dynamic);
         for e in 0..nl {
             let nn = self.load_nn[e];
             let chunk = &self.load_buf[e * self.load_stride..];
@@ -339,6 +341,12 @@ impl System {
             }
             debug_assert_eq!(pos.len(), nd * nd);
         }
+        if cf.k != 0.0 {
+            self.add_link_tangents(cf.k);
+        }
+        if cf.c != 0.0 {
+            self.add_gyroscopic_damping(model, cf.c);
+        }
     }
 
     /// Regularised Coulomb friction of the nodes in contact (dynamics only), from the normal
@@ -431,9 +439,9 @@ impl System {
     }
 
     /// Strain energy of everything but the cables at the last evaluation: bending (hinges,
-    /// rods) and the net triangles' twines [J].
+    /// rods), the net triangles' twines and the rigid links [J].
     pub fn element_energy(&self) -> f64 {
-        self.bending_energy() + self.net_energy()
+        self.bending_energy() + self.net_energy() + self.link_energy()
     }
 
     /// Per node, the largest row sum of |∂²W/∂x²| of the hinges (Gershgorin bound of the

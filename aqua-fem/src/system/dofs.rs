@@ -8,6 +8,7 @@ use crate::error::{FemError, LoadError, Result};
 use crate::loads::{LoadProvider, MAX_LOAD_NODES};
 use crate::model::Model;
 use crate::net_triangle::NetTriangleEval;
+use crate::rigid_body::{BodyFrame, LinkEval};
 use crate::rod::{ROD_DOFS, RodEval, RodVertex};
 
 /// The five nodes of a rod vertex's stencil: three positions and two twist carriers.
@@ -96,6 +97,12 @@ impl System {
         for t in model.net_triangles() {
             for &p in &t.nodes {
                 adj[p].extend(t.nodes.iter().filter(|&&q| q != p));
+            }
+        }
+        for l in &model.links {
+            let nodes = [l.node, l.centre, l.rotation];
+            for &p in &nodes {
+                adj[p].extend(nodes.iter().filter(|&&q| q != p));
             }
         }
         for (e, nodes) in load_nodes.iter().enumerate() {
@@ -199,6 +206,21 @@ impl System {
             }
             rod_pos.push(p);
         }
+        let mut link_pos = Vec::with_capacity(model.links.len());
+        for l in &model.links {
+            let nodes = [l.node, l.centre, l.rotation];
+            let mut p = [NONE; 81];
+            for (i, &ni) in nodes.iter().enumerate() {
+                for (j, &nj) in nodes.iter().enumerate() {
+                    for ki in 0..3 {
+                        for kj in 0..3 {
+                            p[(3 * i + ki) * 9 + 3 * j + kj] = pos(ni, ki, nj, kj);
+                        }
+                    }
+                }
+            }
+            link_pos.push(p);
+        }
         let mut node_pos = Vec::with_capacity(n);
         for i in 0..n {
             let mut p = [NONE; 9];
@@ -261,6 +283,10 @@ impl System {
             rod: vec![RodEval::default(); model.rod_vertices().len()],
             net: vec![NetTriangleEval::default(); model.net_triangles().len()],
             rod_frames: model.rod_edges().iter().map(|e| e.frame).collect(),
+            link_pos,
+            link: vec![LinkEval::default(); model.links.len()],
+            body_frames: vec![BodyFrame::default(); model.bodies.len()],
+            gyro_c: vec![[[0.0; 3]; 3]; model.bodies.len()],
             fint: vec![[0.0; 3]; n],
             fext: vec![[0.0; 3]; n],
             fhydro: vec![[0.0; 3]; n],

@@ -7,6 +7,7 @@
 //! is `seabed.rs`, its friction `friction.rs`.
 
 mod assembly;
+mod bodies;
 mod dofs;
 mod linear_solver;
 mod load_derivatives;
@@ -17,9 +18,11 @@ use crate::bending::HingeEval;
 use crate::cable::CableEval;
 use crate::loads::{ElementLoad, MAX_LOAD_NODES};
 use crate::net_triangle::NetTriangleEval;
+use crate::rigid_body::{BodyFrame, LinkEval};
 use crate::rod::{EdgeFrame, ROD_DOFS, RodEval};
 use crate::symmetric::SymmetricSolver;
 pub(crate) use assembly::mul_mass;
+pub(crate) use bodies::body_poses_with;
 use linear_solver::LinearSolver;
 
 pub(crate) const NONE: usize = usize::MAX;
@@ -88,6 +91,15 @@ pub(crate) struct System {
     /// Reference frame of each rod edge: its frame at the last accepted state (as built until
     /// a dynamic step is accepted).
     pub(crate) rod_frames: Vec<EdgeFrame>,
+    /// Per rigid link: the positions of its 9×9 block (point, centre, carrier) in `values`.
+    link_pos: Vec<[usize; 81]>,
+    /// Per-rigid-link results of the last evaluation (docs/theory/fem.md#rigid-bodies).
+    pub(crate) link: Vec<LinkEval>,
+    /// Reference frame of each rigid body: its orientation and carrier value at the last
+    /// accepted state (as built, R = I and ψ = 0, until a solver accepts one).
+    body_frames: Vec<BodyFrame>,
+    /// Per rigid body: ∂(ω×(I_w·ω))/∂ω of the last dynamic evaluation [kg·m²/s].
+    gyro_c: Vec<[[f64; 3]; 3]>,
     /// Internal (elastic + axial damping + Rayleigh) force, q sense [N].
     pub fint: Vec<[f64; 3]>,
     /// External forces on the structure: gravity, point forces, water loads, seabed [N].
