@@ -54,6 +54,7 @@
 //! 5. [`summary`] (reports) and [`io`] (gmsh import, VTK export);
 //! 6. [`request`]: one builder call from flat keys, as `aqua mesh` takes them.
 
+pub mod body;
 pub mod buoy;
 pub mod cage;
 pub mod collar;
@@ -73,6 +74,7 @@ pub mod section_override;
 pub mod summary;
 pub mod summary_text;
 
+pub use body::{BoxHull, HULL_GROUP, body_mesh};
 pub use buoy::{BUOY_GROUP, buoy_node};
 pub use cage::{CageParams, ResolvedCage};
 pub use collar::{Collar, CollarParams};

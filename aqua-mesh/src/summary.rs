@@ -35,6 +35,7 @@ impl Mesh {
                         ObjectKind::Gmsh => "gmsh".into(),
                         ObjectKind::Buoy => "buoy".into(),
                         ObjectKind::Frame => "frame".into(),
+                        ObjectKind::Body => "body".into(),
                     },
                     copies: o.origins.len(),
                     counts: o.counts().cloned(),

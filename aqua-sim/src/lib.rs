@@ -25,6 +25,7 @@
 //! Errors are typed ([`SimError`]): the `aqua` binary and the Python module turn them into
 //! text; warnings are [`Diagnostic`]s.
 
+pub mod body;
 mod build;
 pub mod buoy;
 pub mod check;

@@ -6,9 +6,9 @@ use crate::error::{Result, SimError};
 use crate::plan::Integrator;
 use crate::provider::WaterLoads;
 use aqua_fem::{
-    DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs, Snapshot,
-    State, StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl, StepReport,
-    solve_static_from,
+    BodyPose, DynamicSolver, Energies, ExplicitSolver, FemError, LinearSolverStats, Model, Outputs,
+    Snapshot, State, StaticControl, StaticProgress, StaticSettings, StaticSolution, StepControl,
+    StepReport, solve_static_from,
 };
 use aqua_mesh::{Mesh, ObjectKind};
 
@@ -84,6 +84,7 @@ fn object_kind(k: &ObjectKind) -> &'static str {
         ObjectKind::Gmsh => "mesh",
         ObjectKind::Buoy => "buoy",
         ObjectKind::Frame => "farm frame",
+        ObjectKind::Body => "body",
     }
 }
 
@@ -99,6 +100,11 @@ pub trait Stepper {
     fn outputs(&self) -> &Outputs;
     /// Warnings of starting the integrator (a reduced explicit step, …).
     fn warnings(&self) -> Vec<String>;
+    /// The pose of every rigid body in the current state, in the model's order (explicit
+    /// schemes refuse models with rigid bodies: none).
+    fn body_poses(&self) -> Vec<BodyPose> {
+        Vec::new()
+    }
     /// What the step control did (HHT-α; explicit schemes keep a fixed step).
     fn step_control(&self) -> Option<StepControl> {
         None
@@ -146,6 +152,9 @@ impl Stepper for DynamicSolver<'_> {
     }
     fn warnings(&self) -> Vec<String> {
         Vec::new()
+    }
+    fn body_poses(&self) -> Vec<BodyPose> {
+        DynamicSolver::body_poses(self)
     }
     fn step_control(&self) -> Option<StepControl> {
         Some(DynamicSolver::step_control(self).clone())

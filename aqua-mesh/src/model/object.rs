@@ -75,6 +75,8 @@ pub enum ObjectKind {
     Buoy,
     /// The frame of a farm grid (frame lines, bridles, pendants, plates, buoys).
     Frame,
+    /// The points a free rigid body holds: its hull's columns and its named points.
+    Body,
 }
 
 /// Discretisation numbers of a cage (docs/theory/cages.md#discretisation-counts).

@@ -11,6 +11,7 @@ use super::schema::{
 };
 use super::sea::SeaSection;
 use super::slots::SLOT_KEYS;
+use crate::body::BodySpec;
 use crate::buoy::{BuoySpec, FARM_BUOY_KEYS};
 use aqua_env::SeaSpec;
 use aqua_env::config::{CurrentSpec, SpectrumSpec, WaterSpec, WavesSpec};
@@ -457,6 +458,30 @@ impl Keys for BuoySpec {
     }
 }
 
+impl Keys for BodySpec {
+    fn keys() -> Vec<Key> {
+        with(
+            values(&["name", "centre", "mass", "inertia"]),
+            vec![
+                Key::Table(
+                    "hull",
+                    values(&[
+                        "length",
+                        "width",
+                        "height",
+                        "centre",
+                        "columns",
+                        "layers",
+                        "drag_coefficient",
+                        "added_mass_coefficient",
+                    ]),
+                ),
+                Key::Array("point", values(&["name", "position"])),
+            ],
+        )
+    }
+}
+
 impl Keys for FixSpec {
     fn keys() -> Vec<Key> {
         values(&["nodes", "dofs", "clamp"])
@@ -552,6 +577,7 @@ impl Keys for Scene {
             Key::Array("group", GroupSpec::keys()),
             Key::Array("point", PointSpec::keys()),
             Key::Array("buoy", BuoySpec::keys()),
+            Key::Array("body", BodySpec::keys()),
             Key::Array("fix", FixSpec::keys()),
             Key::Array("prescribed", PrescribedSpec::keys()),
             Key::Table("analysis", AnalysisSpec::keys()),

@@ -22,6 +22,7 @@
 //! [[group]]               # per element group: section overrides + Morison keys
 //! [[point]]               # point bodies on node groups (fem.md#loads)
 //! [[buoy]]                # buoys and coupling plates (crate::buoy, farm.md#buoys)
+//! [[body]]                # free rigid bodies (crate::body, farm.md#rigid-bodies)
 //! [[fix]]                 # extra fixed DOFs (fem.md#boundary-conditions)
 //! [[prescribed]]          # prescribed motions (fem.md#boundary-conditions)
 //! [analysis]              # static / dynamic settings (scene.md#analysis)

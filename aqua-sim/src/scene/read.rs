@@ -9,6 +9,7 @@ use super::schema::{
     SceneWake,
 };
 use super::sea::SeaSection;
+use crate::body::BodySpec;
 use crate::buoy::{BuoyShape, BuoySpec, FARM_BUOY_KEYS};
 use crate::error::{Result, SimError};
 use crate::overrides::Override;
@@ -78,6 +79,8 @@ struct RawScene {
     point: Vec<Spanned<Table>>,
     #[serde(default)]
     buoy: Vec<Spanned<Table>>,
+    #[serde(default)]
+    body: Vec<Spanned<Table>>,
     #[serde(default)]
     fix: Vec<Spanned<Table>>,
     #[serde(default)]
@@ -399,6 +402,7 @@ impl RawScene {
         respan(&mut self.group, base.group);
         respan(&mut self.point, base.point);
         respan(&mut self.buoy, base.buoy);
+        respan(&mut self.body, base.body);
         respan(&mut self.fix, base.fix);
         respan(&mut self.prescribed, base.prescribed);
         self
@@ -449,6 +453,11 @@ impl Ctx<'_> {
             buoy: ctx.each(&raw.buoy, |i, line, t| {
                 let spec: BuoySpec = ctx.typed("buoy", i, line, "", t)?;
                 spec.resolve().map_err(|m| ctx.err("buoy", i, line, m))?;
+                Ok(spec)
+            })?,
+            body: ctx.each(&raw.body, |i, line, t| {
+                let spec: BodySpec = ctx.typed("body", i, line, "", t)?;
+                spec.resolve().map_err(|m| ctx.err("body", i, line, m))?;
                 Ok(spec)
             })?,
             fix: ctx.each(&raw.fix, |i, line, t| ctx.fix(i, line, t))?,

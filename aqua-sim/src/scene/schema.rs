@@ -5,6 +5,7 @@
 use super::analysis::AnalysisSpec;
 use super::hydro::{LineHydro, NetHydro};
 use super::slots::SlotSpec;
+use crate::body::BodySpec;
 use crate::buoy::BuoySpec;
 use aqua_env::SeaSpec;
 use aqua_fem::SeabedSettings;
@@ -243,6 +244,9 @@ pub struct Scene {
     pub point: Vec<Located<PointSpec>>,
     /// Buoys and coupling plates.
     pub buoy: Vec<Located<BuoySpec>>,
+    /// `[[body]]`: free rigid bodies (crate::body).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub body: Vec<Located<BodySpec>>,
     /// Extra fixed DOFs.
     pub fix: Vec<Located<FixSpec>>,
     /// Prescribed motions.
