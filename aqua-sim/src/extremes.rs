@@ -20,7 +20,7 @@
 use crate::build::Built;
 use crate::post::{SummaryRow, group_max_tensions, line_end_loads, net_force, support_reactions};
 use crate::provider::WaterLoads;
-use aqua_fem::{Outputs, State};
+use aqua_fem::{BodyPose, Outputs, State};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -93,8 +93,16 @@ impl Extremes {
         c
     }
 
-    /// Adds a state (its outputs evaluated at it) to the extremes; allocates nothing.
-    pub fn observe(&mut self, built: &Built, loads: &WaterLoads, state: &State, out: &Outputs) {
+    /// Adds a state (its outputs evaluated at it, `poses` its rigid bodies') to the extremes;
+    /// allocates nothing.
+    pub fn observe(
+        &mut self,
+        built: &Built,
+        loads: &WaterLoads,
+        state: &State,
+        out: &Outputs,
+        poses: &[BodyPose],
+    ) {
         let f = net_force(built, loads, state);
         let (r, m) = support_reactions(built, &state.x, out);
         let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -122,6 +130,13 @@ impl Extremes {
         self.values[k + g..k + g + p].copy_from_slice(&self.stresses);
         for (dst, src) in self.values[k + g + p..].chunks_exact_mut(4).zip(&self.ends) {
             dst.copy_from_slice(src);
+        }
+        let b = k + g + p + 4 * self.ends.len();
+        for (dst, pose) in self.values[b..].chunks_exact_mut(6).zip(poses) {
+            dst[..3].copy_from_slice(&pose.centre);
+            for (d, a) in dst[3..].iter_mut().zip(pose.angles) {
+                *d = a.to_degrees();
+            }
         }
         self.add(state.t);
     }

@@ -9,7 +9,7 @@
 
 use crate::build::{Built, NetCells};
 use crate::provider::WaterLoads;
-use aqua_fem::{Outputs, State};
+use aqua_fem::{BodyPose, Outputs, State};
 use aqua_hydro::assembly::ElementOutput;
 use aqua_mesh::{PanelNodes, Role};
 use nalgebra::Vector3;
@@ -39,6 +39,9 @@ pub struct SummaryRow {
     /// structure instead of a support: the tension of the end element, the line's pull on
     /// it), tension of the anchor element and of the fairlead element [N].
     pub line_ends: Vec<[f64; 4]>,
+    /// Per rigid body: its centre of gravity [m] and [roll, pitch, yaw] [deg]
+    /// (R = R_z(yaw)·R_y(pitch)·R_x(roll), docs/theory/fem.md#rigid-bodies).
+    pub bodies: Vec<[f64; 6]>,
     /// Newton iterations of the step (statics: all iterations).
     pub iterations: usize,
     /// Step size [s] (0 for statics).
@@ -213,11 +216,14 @@ pub fn line_end_loads(built: &Built, out: &Outputs, dst: &mut [[f64; 4]]) {
 
 impl SummaryRow {
     /// The summary of a state: `net_force` from [`net_force_and_wake`], `volume0` the
-    /// undeformed enclosed volume ([`total_volume`] of the model's nodes).
+    /// undeformed enclosed volume ([`total_volume`] of the model's nodes), `poses` the rigid
+    /// bodies' (in the model's order).
+    #[allow(clippy::too_many_arguments)]
     pub fn of_state(
         built: &Built,
         state: &State,
         out: &Outputs,
+        poses: &[BodyPose],
         net_force: [f64; 3],
         volume0: f64,
         iterations: usize,
@@ -242,6 +248,13 @@ impl SummaryRow {
             max_tension,
             max_stress,
             line_ends,
+            bodies: poses
+                .iter()
+                .map(|p| {
+                    let [r, q, y] = p.angles.map(f64::to_degrees);
+                    [p.centre[0], p.centre[1], p.centre[2], r, q, y]
+                })
+                .collect(),
             iterations,
             dt,
         }
@@ -274,7 +287,8 @@ impl SummaryRow {
 
     /// The columns of the per-group and per-line loads, in the order of [`SummaryRow::values`]:
     /// `Tmax_<group>` per structural group, `stress_max_<group>` per pipe group [Pa], then
-    /// per `[[line]]` its anchor and fairlead reactions and end-element tensions.
+    /// per `[[line]]` its anchor and fairlead reactions and end-element tensions, then per rigid
+    /// body `<name>_x`, `_y`, `_z` [m] and `_roll`, `_pitch`, `_yaw` [deg].
     pub fn load_columns(built: &Built) -> Vec<String> {
         let mut c = Vec::new();
         for g in &built.group_names {
@@ -292,6 +306,12 @@ impl SummaryRow {
                 "fairlead_element_tension",
             ] {
                 c.push(format!("{n}_{end}"));
+            }
+        }
+        for b in built.model.rigid_bodies() {
+            let n = b.name.replace(',', "_");
+            for k in ["x", "y", "z", "roll", "pitch", "yaw"] {
+                c.push(format!("{n}_{k}"));
             }
         }
         c
@@ -316,6 +336,7 @@ impl SummaryRow {
         v.extend(&self.max_tension);
         v.extend(&self.max_stress);
         v.extend(self.line_ends.iter().flatten());
+        v.extend(self.bodies.iter().flatten());
         v.push(self.iterations as f64);
         v.push(self.dt);
         v

@@ -16,8 +16,8 @@ use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium_from};
 use aqua_env::Phase;
 use aqua_fem::{
-    Energies, LinearSolverStats, Outputs, State, StaticControl, StaticProgress, StepControl,
-    StepReport,
+    BodyPose, Energies, LinearSolverStats, Outputs, State, StaticControl, StaticProgress,
+    StepControl, StepReport,
 };
 use aqua_hydro::assembly::LoadAssembly;
 use std::time::Instant;
@@ -256,7 +256,8 @@ impl<'p> Simulation<'p> {
             record.static_load_factor = Some(stat.report.load_factor);
             record.static_converged = Some(!stat.report.interrupted);
             record.static_relative_residual = Some(stat.report.relative_residual);
-            self.observe(record, &stat.state, &stat.outputs);
+            let poses = stat.body_poses(model);
+            self.observe(record, &stat.state, &stat.outputs, &poses);
             if let Some(e) = record.extremes.as_mut() {
                 // The equilibrium is its own load case: the first dynamic step replaces it.
                 e.until_next();
@@ -266,6 +267,7 @@ impl<'p> Simulation<'p> {
                 record,
                 &stat.state,
                 &stat.outputs,
+                &poses,
                 stat.report.iterations,
                 0.0,
             )?;
@@ -322,8 +324,17 @@ impl<'p> Simulation<'p> {
         write_initial: bool,
     ) -> Result<()> {
         if write_initial {
-            self.observe(record, solver.state(), solver.outputs());
-            self.frame(obs, record, solver.state(), solver.outputs(), 0, 0.0)?;
+            let poses = solver.body_poses();
+            self.observe(record, solver.state(), solver.outputs(), &poses);
+            self.frame(
+                obs,
+                record,
+                solver.state(),
+                solver.outputs(),
+                &poses,
+                0,
+                0.0,
+            )?;
         }
         while !solver.is_finished() {
             if obs.stop_requested() {
@@ -343,7 +354,8 @@ impl<'p> Simulation<'p> {
                 .step(&built.design, &solver.state().x, t, |x, y| {
                     built.sea.elevation(x, y, t, Phase::Dynamic)
                 });
-            self.observe(record, solver.state(), solver.outputs());
+            let poses = solver.body_poses();
+            self.observe(record, solver.state(), solver.outputs(), &poses);
             obs.step_done(&report, record.steps);
             if report.output_time {
                 self.frame(
@@ -351,6 +363,7 @@ impl<'p> Simulation<'p> {
                     record,
                     solver.state(),
                     solver.outputs(),
+                    &poses,
                     report.iterations,
                     report.dt,
                 )?;
@@ -361,9 +374,15 @@ impl<'p> Simulation<'p> {
     }
 
     /// Adds an accepted state to the run's extremes (every step, not only output steps).
-    fn observe(&self, record: &mut RunRecord, state: &State, outputs: &Outputs) {
+    fn observe(
+        &self,
+        record: &mut RunRecord,
+        state: &State,
+        outputs: &Outputs,
+        poses: &[BodyPose],
+    ) {
         if let Some(e) = record.extremes.as_mut() {
-            e.observe(&self.prep.built, &self.loads, state, outputs);
+            e.observe(&self.prep.built, &self.loads, state, outputs, poses);
         }
     }
 
@@ -374,6 +393,7 @@ impl<'p> Simulation<'p> {
         record: &mut RunRecord,
         state: &State,
         outputs: &Outputs,
+        poses: &[BodyPose],
         iterations: usize,
         dt: f64,
     ) -> Result<()> {
@@ -383,6 +403,7 @@ impl<'p> Simulation<'p> {
             built,
             state,
             outputs,
+            poses,
             net_force,
             self.volume0,
             iterations,

@@ -210,6 +210,21 @@ pub(crate) fn build_mesh_parts(scene: &Scene) -> Result<MeshParts> {
             m.append("buoy", i, b.line, aqua_mesh::buoy_node(&name, p))?;
         }
     }
+    // Bodies before lines too: a fairlead can name a body's point ("barge/f1").
+    for (i, b) in scene.body.iter().enumerate() {
+        let name = m.name(&b.value.name, "body", i, b.line)?;
+        let body = b
+            .value
+            .resolve()
+            .map_err(|e| input(format!("{file}: line {}: [[body]] #{}: {e}", b.line, i + 1)))?;
+        let hull = body.hull.map(|h| h.shape);
+        m.append(
+            "body",
+            i,
+            b.line,
+            aqua_mesh::body_mesh(&name, body.centre, hull.as_ref(), &body.points),
+        )?;
+    }
     for (i, c) in scene.line.iter().enumerate() {
         add_line(scene, &mut m, i, c)?;
     }

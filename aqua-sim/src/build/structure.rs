@@ -95,8 +95,13 @@ pub(super) fn build_structure(
     hydro_points.extend(buoy_points);
     let (mut supported, clamped) = fixed_nodes(scene, mesh, &mut b)?;
     let external = prescribed_motions(scene, mesh, prescribed, &mut b, &mut supported)?;
-    // Last: a rod adds its twist carriers (and ghost nodes at clamps) after every node above.
+    // Last: a rod adds its twist carriers (and ghost nodes at clamps) after every node above,
+    // a rigid body its centre and rotation nodes.
     super::bending::add_bending(&file, mesh, &sections, &clamped, &mut b)?;
+    let (body_points, body_floaters) = super::bodies::add_bodies(scene, mesh, &mut b)?;
+    hydro_points.extend(body_points);
+    let mut buoys = buoys;
+    buoys.extend(body_floaters);
     Ok(Structure {
         builder: b,
         sections,

@@ -11,7 +11,7 @@ use crate::plan::Prepared;
 use crate::post::{SummaryRow, net_force_and_wake, total_volume};
 use crate::provider::WaterLoads;
 use crate::run::Frame;
-use aqua_fem::{Outputs, State};
+use aqua_fem::{BodyPose, Outputs, State};
 use std::path::Path;
 
 /// The open files of a coupled run and its running extremes.
@@ -47,8 +47,10 @@ impl CoupledOutput {
         loads: &WaterLoads,
         state: &State,
         outputs: &Outputs,
+        poses: &[BodyPose],
     ) {
-        self.extremes.observe(&prep.built, loads, state, outputs);
+        self.extremes
+            .observe(&prep.built, loads, state, outputs, poses);
     }
 
     /// The state before the first step (a static equilibrium stands until the first step,
@@ -59,11 +61,12 @@ impl CoupledOutput {
         loads: &WaterLoads,
         state: &State,
         outputs: &Outputs,
+        poses: &[BodyPose],
         iterations: usize,
     ) -> Result<()> {
-        self.observe(prep, loads, state, outputs);
+        self.observe(prep, loads, state, outputs, poses);
         self.extremes.until_next();
-        self.row(prep, loads, state, outputs, iterations, 0.0)
+        self.row(prep, loads, state, outputs, poses, iterations, 0.0)
     }
 
     /// A call begins: its steps may still be put back.
@@ -85,6 +88,7 @@ impl CoupledOutput {
         loads: &WaterLoads,
         state: &State,
         outputs: &Outputs,
+        poses: &[BodyPose],
         iterations: usize,
         dt: f64,
     ) -> Result<()> {
@@ -94,6 +98,7 @@ impl CoupledOutput {
             built,
             state,
             outputs,
+            poses,
             net_force,
             self.volume0,
             iterations,

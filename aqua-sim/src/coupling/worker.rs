@@ -112,7 +112,15 @@ impl<'p> Worker<'p> {
         )?;
         let f = point_forces(prep, &s.outputs);
         if let Some(o) = self.output.as_mut() {
-            o.start(prep, &self.loads, &s.state, &s.outputs, s.report.iterations)?;
+            let poses = s.body_poses(&prep.built.model);
+            o.start(
+                prep,
+                &self.loads,
+                &s.state,
+                &s.outputs,
+                &poses,
+                s.report.iterations,
+            )?;
         }
         self.initial = Some((s.state, s.outputs));
         Ok(f)
@@ -151,7 +159,8 @@ impl<'p> Worker<'p> {
             while !s.is_finished() {
                 iterations = s.step(&mut self.loads)?.iterations;
                 if let Some(o) = output.as_mut() {
-                    o.observe(prep, &self.loads, s.state(), s.outputs());
+                    let poses = s.body_poses();
+                    o.observe(prep, &self.loads, s.state(), s.outputs(), &poses);
                 }
             }
             Ok(())
@@ -183,6 +192,7 @@ impl<'p> Worker<'p> {
                 &self.loads,
                 s.state(),
                 s.outputs(),
+                &s.body_poses(),
                 iterations,
                 t1 - t0,
             )?;
