@@ -134,6 +134,7 @@ fn the_table_lists_figures_of_every_runnable_example() {
         "net-panel.toml",
         "mooring-chain.toml",
         "buoy-mooring.toml",
+        "feed-barge.toml",
         "moored-cage.toml",
         "farm.toml",
     ] {
@@ -161,6 +162,7 @@ fn fast_examples_give_the_figures_of_the_guide() {
     check(&[
         "net-panel.toml",
         "buoy-mooring.toml",
+        "feed-barge.toml",
         "mooring-chain.toml",
         "reference-cage.toml",
     ]);
