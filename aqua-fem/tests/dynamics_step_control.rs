@@ -168,6 +168,41 @@ fn a_start_up_snap_below_the_peaks_is_not_a_resolution_error() {
     assert!(control.peak_tension_resolution().error > 0.1);
 }
 
+/// The estimate names the element that carried the peak at the higher end of its largest step
+/// change: a loaded line sways smoothly (element 3) while a slack one (element 7) snaps above it
+/// in a single step, whether the snap rises or falls within that step.
+#[test]
+fn the_resolution_names_the_element_of_the_jump() {
+    let smooth: Vec<f64> = (0..400).map(|n| 10.0 + (0.05 * n as f64).sin()).collect();
+    let mut tensions = smooth.clone();
+    let mut elements = vec![3; smooth.len()];
+    tensions[200] = 14.0;
+    elements[200] = 7;
+    let control = StepControl {
+        peak_tensions: tensions,
+        peak_elements: elements,
+        ..Default::default()
+    };
+    let r = control.peak_tension_resolution();
+    assert_eq!(r.element, Some(7), "{r:?}");
+    assert!(r.error > 0.01, "{r:?}");
+    // Without the snap the loaded line's own element is named, and the error is small.
+    let control = StepControl {
+        peak_tensions: smooth,
+        peak_elements: vec![3; 400],
+        ..Default::default()
+    };
+    let r = control.peak_tension_resolution();
+    assert_eq!(r.element, Some(3));
+    assert!(r.error < 1e-3, "{r:?}");
+    // Unknown elements (a record without them) name none.
+    let control = StepControl {
+        peak_tensions: vec![0.0, 1.0, 0.5],
+        ..Default::default()
+    };
+    assert_eq!(control.peak_tension_resolution().element, None);
+}
+
 /// A step that lands on an output time, t_out − t, differs from Δt by round-off only; it is
 /// taken as Δt, so outputs neither change the trajectory nor force fresh factorisations (each
 /// output used to force two: the landing step and the next full one, 81 factorisations in 200

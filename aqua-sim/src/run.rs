@@ -16,7 +16,7 @@ use crate::scene::AnalysisKind;
 use crate::solvers::{Stepper, start_integrator, static_equilibrium_from};
 use aqua_env::Phase;
 use aqua_fem::{
-    BodyPose, Energies, LinearSolverStats, Outputs, State, StaticControl, StaticProgress,
+    BodyPose, Energies, LinearSolverStats, Model, Outputs, State, StaticControl, StaticProgress,
     StepControl, StepReport,
 };
 use aqua_hydro::assembly::LoadAssembly;
@@ -300,7 +300,7 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = energy_guard_warning(integrator, record) {
                     obs.diagnostic(&d);
                 }
-                if let Some(d) = time_step_warning(record) {
+                if let Some(d) = time_step_warning(record, model) {
                     obs.diagnostic(&d);
                 }
                 if let Some(d) = extremes_warning(record, &prep.built.group_names) {
@@ -427,21 +427,37 @@ pub const PEAK_TENSION_ERROR_WARNING: f64 = 0.01;
 
 /// A warning when the peak element tension changed so much within single steps that its
 /// extremes are under-resolved: the estimate of [`StepControl::peak_tension_resolution`] above
-/// 1 % (docs/theory/fem.md#time-step-error-indicator).
-fn time_step_warning(record: &RunRecord) -> Option<Diagnostic> {
+/// 1 % (docs/theory/fem.md#time-step-error-indicator). It names the element group whose member
+/// carried the peak at that step, so that a snap of a slack line is not read as an error of
+/// the loaded lines.
+fn time_step_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
     let res = record.step_control.as_ref()?.peak_tension_resolution();
     if res.error <= PEAK_TENSION_ERROR_WARNING {
         return None;
     }
+    let group = res
+        .element
+        .and_then(|e| model.groups().iter().find(|g| g.elements.contains(&e)))
+        .map(|g| g.name.as_str());
+    let (within, snap) = match group {
+        Some(g) => (
+            format!(", in `{g}`"),
+            format!(
+                " (if `{g}` is a slack member that snaps taut within single steps, its peak may \
+                 not converge with `dt` at all: docs/theory/fem.md#choice-of-the-default-scheme)"
+            ),
+        ),
+        None => (String::new(), String::new()),
+    };
     Some(Diagnostic::warning(
         "fem/time-step",
         "dynamics",
         format!(
             "near its largest values the peak tension changed by up to {:.3} N within one step \
-             (range {:.3} … {:.3} N): \
+             (range {:.3} … {:.3} N){within}: \
              tension extremes at this time step are uncertain by about {:.1} % \
              (docs/theory/fem.md#time-step-error-indicator); halve `dt` or compare with \
-             `aqua study --vary dt=...`",
+             `aqua study --vary dt=...`{snap}",
             res.jump,
             res.range[0],
             res.range[1],
@@ -465,7 +481,9 @@ fn extremes_warning(record: &RunRecord, group_names: &[String]) -> Option<Diagno
         "fem/extremes-unresolved",
         "dynamics",
         format!(
-            "extreme_tolerance {:.2} % was not met in {} steps taken at dt_min: the largest              tension of `{group}` is uncertain by about {:.1} %; lower `dt_min` or accept a              larger tolerance",
+            "extreme_tolerance {:.2} % was not met in {} steps taken at dt_min: the largest \
+             tension of `{group}` is uncertain by about {:.1} %; lower `dt_min` or accept a \
+             larger tolerance",
             100.0 * r.tolerance,
             r.unresolved_steps,
             100.0 * r.worst_unresolved

@@ -5,22 +5,18 @@
 mod common;
 use common::*;
 
-/// The bundled farm with one row of two cages, HHT-α (α = 0.3), for 10 s.
+/// The bundled farm (HHT-α, α = 0.3, its default scheme) with one row of two cages, for 10 s.
 fn small_farm_hht() -> String {
     let text = example("farm.toml");
-    for key in [
-        "rows = 2 ",
-        "columns = 3 ",
-        "scheme = \"midpoint\"",
-        "theta = 0.75",
-        "t_end = 30.0",
-    ] {
+    for key in ["rows = 2 ", "columns = 3 ", "t_end = 30.0"] {
         assert!(text.contains(key), "farm.toml has no `{key}`");
     }
+    assert!(
+        !text.contains("scheme ="),
+        "farm.toml no longer runs the default HHT-α"
+    );
     text.replace("rows = 2 ", "rows = 1 ")
         .replace("columns = 3 ", "columns = 2 ")
-        .replace("scheme = \"midpoint\"", "scheme = \"hht\"")
-        .replace("theta = 0.75", "")
         .replace("t_end = 30.0", "t_end = 10.0")
 }
 

@@ -138,8 +138,17 @@ impl DynamicSolver<'_> {
                 b
             }
         };
-        let peak = self.outputs.tension.iter().fold(0.0f64, |m, &t| m.max(t));
+        let (peak, element) =
+            self.outputs
+                .tension
+                .iter()
+                .enumerate()
+                .fold(
+                    (0.0f64, 0),
+                    |(m, k), (e, &t)| if t > m { (t, e) } else { (m, k) },
+                );
         self.control.peak_tensions.push(peak);
+        self.control.peak_elements.push(element);
         if !first {
             self.energies.external_work += b.external_work;
             self.energies.support_work += b.support_work;

@@ -71,6 +71,7 @@ impl DynamicSolver<'_> {
             first_contraction: self.first_contraction,
             control: StepControl {
                 peak_tensions: Vec::new(),
+                peak_elements: Vec::new(),
                 ..self.control.clone()
             },
             peak_len: self.control.peak_tensions.len(),
@@ -108,9 +109,12 @@ impl DynamicSolver<'_> {
         self.last_reaction.clone_from(&s.last_reaction);
         self.first_contraction = s.first_contraction;
         let mut peaks = std::mem::take(&mut self.control.peak_tensions);
+        let mut elements = std::mem::take(&mut self.control.peak_elements);
         peaks.truncate(s.peak_len);
+        elements.truncate(s.peak_len);
         self.control.clone_from(&s.control);
         self.control.peak_tensions = peaks;
+        self.control.peak_elements = elements;
         self.kinetic_free = s.kinetic_free;
         self.sys.rod_frames.clone_from(&s.rod_frames);
         self.sys.set_body_frames(&s.body_frames);

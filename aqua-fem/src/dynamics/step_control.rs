@@ -61,6 +61,10 @@ pub struct StepControl {
     /// (docs/theory/fem.md#time-step-error-indicator).
     #[serde(skip)]
     pub peak_tensions: Vec<f64>,
+    /// The element carrying each of [`StepControl::peak_tensions`] (may be shorter: then the
+    /// element is not known).
+    #[serde(skip)]
+    pub peak_elements: Vec<usize>,
     /// What the extreme control did, with `extreme_tolerance` set
     /// (docs/theory/fem.md#extremes-to-a-tolerance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -81,17 +85,22 @@ impl StepControl {
         }
         // Steps from or into the top quarter of the range: where a sampled maximum is formed.
         let top = hi - 0.5 * amplitude;
-        let jump = t
+        let (jump, at) = t
             .windows(2)
-            .filter(|w| w[0] >= top || w[1] >= top)
-            .map(|w| (w[1] - w[0]).abs())
-            .fold(0.0, f64::max);
+            .enumerate()
+            .filter(|(_, w)| w[0] >= top || w[1] >= top)
+            .map(|(i, w)| ((w[1] - w[0]).abs(), if w[1] >= w[0] { i + 1 } else { i }))
+            .fold(
+                (0.0, None),
+                |(m, a), (j, i)| if j > m { (j, Some(i)) } else { (m, a) },
+            );
         // A sine's slope in its top quarter is at most cos 30° of its slope at the mean.
         let r = jump / (amplitude * 0.75f64.sqrt());
         TensionResolution {
             jump,
             range: [lo, hi],
             error: r * r / 8.0 * amplitude / hi,
+            element: at.and_then(|i| self.peak_elements.get(i).copied()),
         }
     }
 
@@ -118,6 +127,10 @@ pub struct TensionResolution {
     /// range and r = jump/(A·cos 30°) the phase step ωΔt of a sine of amplitude A whose slope
     /// in its top quarter is at most cos 30° of its largest.
     pub error: f64,
+    /// The element carrying the peak tension at the higher end of that largest step change,
+    /// when known: the member whose tension the step missed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub element: Option<usize>,
 }
 
 /// One halving.
