@@ -742,6 +742,7 @@ impl ModelBuilder {
             bed_point,
             point_mass,
             mean_length,
+            partition: None,
         })
     }
 }

@@ -2,7 +2,7 @@
 //! and every input validated, by [`ModelBuilder`] (`builder.rs`).
 
 use crate::bending::Hinge;
-use crate::error::{Result, invalid};
+use crate::error::{FemError, Result, invalid};
 use crate::friction::SeabedFriction;
 use crate::motion::Motion;
 use crate::net_triangle::{NetTriangle, NetTriangleGroup, NetTriangleTwines};
@@ -379,6 +379,8 @@ pub struct Model {
     /// Point-body mass per node [kg].
     pub(crate) point_mass: Vec<f64>,
     pub(crate) mean_length: f64,
+    /// Part of each node (a prefix of the nodes) for the block solve, if partitioned.
+    pub(crate) partition: Option<Vec<usize>>,
 }
 
 impl Model {
@@ -390,6 +392,30 @@ impl Model {
     /// Environment (g, ρ_w, seabed).
     pub fn environment(&self) -> &Environment {
         &self.env
+    }
+    /// The part of each node given to [`Model::set_partition`] (a prefix of the nodes), if
+    /// any.
+    pub fn partition(&self) -> Option<&[usize]> {
+        self.partition.as_deref()
+    }
+    /// Partitions the nodes for the block solve of the linear systems, or removes the
+    /// partition (`None`): `part_of_node[i]` is node i's part (any numbers); nodes beyond the
+    /// list (e.g. a rod's twist carriers) join the part of a neighbour. The LU path then
+    /// eliminates each part's interior apart, in parallel, and the DOFs where parts touch
+    /// through their Schur complement (docs/theory/fem.md#block-solve); a partition changes
+    /// only the round-off of a solution.
+    pub fn set_partition(&mut self, part_of_node: Option<Vec<usize>>) -> Result<()> {
+        if let Some(p) = &part_of_node
+            && p.len() > self.nodes.len()
+        {
+            return Err(FemError::InvalidModel(format!(
+                "the partition lists {} nodes; the model has {}",
+                p.len(),
+                self.nodes.len()
+            )));
+        }
+        self.partition = part_of_node;
+        Ok(())
     }
     /// Number of nodes.
     pub fn n_nodes(&self) -> usize {

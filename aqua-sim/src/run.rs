@@ -71,6 +71,9 @@ pub struct RunRecord {
     pub static_converged: Option<bool>,
     /// ‖r‖/F_ref of the static state written; `None` without a static solve.
     pub static_relative_residual: Option<f64>,
+    /// Parts and interface DOFs of the static solve's block solve, if one served
+    /// (docs/theory/fem.md#block-solve).
+    pub static_block_solve: Option<(usize, usize)>,
     /// How it ended.
     pub ending: Ending,
     /// Output frames delivered.
@@ -256,6 +259,7 @@ impl<'p> Simulation<'p> {
             record.static_load_factor = Some(stat.report.load_factor);
             record.static_converged = Some(!stat.report.interrupted);
             record.static_relative_residual = Some(stat.report.relative_residual);
+            record.static_block_solve = stat.report.block_solve;
             let poses = stat.body_poses(model);
             self.observe(record, &stat.state, &stat.outputs, &poses);
             if let Some(e) = record.extremes.as_mut() {

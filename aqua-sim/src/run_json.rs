@@ -49,6 +49,9 @@ pub(crate) fn run_json(
         "static_load_factor": record.static_load_factor,
         "static_converged": record.static_converged,
         "static_relative_residual": record.static_relative_residual,
+        "static_block_solve": record.static_block_solve.map(|(parts, interface)| {
+            serde_json::json!({"parts": parts, "interface_dofs": interface})
+        }),
         "step_control": &record.step_control,
         "energies": &record.energies,
         "linear_solver": &record.linear_solver,

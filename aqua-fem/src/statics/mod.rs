@@ -346,6 +346,7 @@ pub fn solve_static_from<P: LoadProvider + ?Sized>(
     report.load_factor = s_out;
     report.relative_residual = rn / ctx.f_ref;
     report.noise_level = ctx.f_noise / ctx.f_ref;
+    report.block_solve = ctx.sys.block_solve_shape();
     if !report.interrupted {
         report
             .warnings

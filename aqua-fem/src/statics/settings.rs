@@ -125,6 +125,10 @@ pub struct StaticReport {
     pub load_factor: f64,
     /// Warnings (logged by the caller).
     pub warnings: Vec<String>,
+    /// Parts and interface DOFs of the block solve that factorised the systems, if the
+    /// model's partition was used (docs/theory/fem.md#block-solve).
+    #[serde(default)]
+    pub block_solve: Option<(usize, usize)>,
 }
 
 /// One Newton iteration of the static solve, as reported to an observer.

@@ -27,6 +27,35 @@ fn pos_in(col_ptr: &[usize], row_idx: &[usize], row: usize, col: usize) -> usize
     col_ptr[col] + s.binary_search(&row).expect("entry in pattern")
 }
 
+/// The part of every node: its own from `given` (a prefix of the nodes), else that of its
+/// lowest-numbered neighbour with one, spread until every node connected to a given one has
+/// one; nodes left over go to part 0.
+fn node_parts(given: &[usize], adj: &[Vec<usize>]) -> Vec<usize> {
+    let mut part: Vec<usize> = (0..adj.len())
+        .map(|i| given.get(i).copied().unwrap_or(NONE))
+        .collect();
+    loop {
+        let mut changed = false;
+        for i in 0..adj.len() {
+            if part[i] == NONE
+                && let Some(&j) = adj[i].iter().find(|&&j| part[j] != NONE)
+            {
+                part[i] = part[j];
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    for p in &mut part {
+        if *p == NONE {
+            *p = 0;
+        }
+    }
+    part
+}
+
 impl System {
     /// Numbers the free DOFs and builds the sparse pattern of the free-DOF Jacobian.
     pub fn new<P: LoadProvider + ?Sized>(model: &Model, provider: &P) -> Result<Self> {
@@ -119,6 +148,10 @@ impl System {
             a.sort_unstable();
             a.dedup();
         }
+        let part_of_free = model
+            .partition()
+            .map(|p| node_parts(p, &adj))
+            .map(|np| dof_of_free.iter().map(|&d| np[d / 3]).collect());
         // CSC pattern over free DOFs; column order follows global DOF order, so rows sorted.
         let nf = dof_of_free.len();
         let mut col_ptr = Vec::with_capacity(nf + 1);
@@ -304,6 +337,9 @@ impl System {
             added: vec![[[0.0; 3]; 3]; n],
             diag_pos,
             solver: None,
+            part_of_free,
+            schur: None,
+            schur_active: false,
             n_factorisations: 0,
             symmetric: false,
             sym: None,

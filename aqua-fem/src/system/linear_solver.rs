@@ -2,7 +2,7 @@
 //! kept across iterations while it stays a good preconditioner, with the sparse LU (symbolic
 //! analysis once) as fallback and for statics (docs/theory/fem.md#sparse-linear-algebra).
 
-use super::System;
+use super::{SchurSolver, System};
 use crate::error::{FemError, Result};
 use crate::symmetric::{RefineStop, SymmetricSolver};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -132,8 +132,21 @@ impl System {
         Err(())
     }
 
-    /// Numeric LU of `values` (the current `self.values` if `None`).
+    /// Numeric LU of `values` (the current `self.values` if `None`): the block solve of the
+    /// partition where there is one that pays, else the sparse LU of the whole.
     fn factorize_lu(&mut self, values: Option<&[f64]>) -> Result<()> {
+        self.schur_active = false;
+        if self.schur.is_none()
+            && let Some(parts) = &self.part_of_free
+        {
+            self.schur = Some(SchurSolver::new(&self.col_ptr, &self.row_idx, parts)?);
+        }
+        if let Some(Some(s)) = self.schur.as_mut() {
+            s.factorize(values.unwrap_or(&self.values))?;
+            self.schur_active = true;
+            self.n_factorisations += 1;
+            return Ok(());
+        }
         let nf = self.n_free();
         // SAFETY-free: the pattern was built with sorted, in-range, unique row indices.
         let sym = SymbolicSparseColMatRef::new_checked(nf, nf, &self.col_ptr, None, &self.row_idx);
@@ -197,6 +210,15 @@ impl System {
             self.symmetric_fallback();
             lu?;
         }
+        if self.schur_active {
+            let s = self
+                .schur
+                .as_mut()
+                .and_then(Option::as_mut)
+                .expect("block solver");
+            s.solve(rhs);
+            return finite(rhs);
+        }
         let s = self
             .solver
             .as_mut()
@@ -204,13 +226,26 @@ impl System {
         let lu = faer::sparse::linalg::lu::LuRef::new_unchecked(&s.symbolic, &s.numeric);
         let m = MatMut::from_column_major_slice_mut(rhs, nf, 1);
         lu.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut s.mem));
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(FemError::Linear(
-                "the Jacobian is singular (non-finite solution): a part of the structure may be \
-                 unsupported or massless"
-                    .into(),
-            ));
-        }
-        Ok(false)
+        finite(rhs)
     }
+
+    /// The block solver's number of parts and interface DOFs, if it serves the LU path.
+    pub fn block_solve_shape(&self) -> Option<(usize, usize)> {
+        self.schur
+            .as_ref()
+            .and_then(Option::as_ref)
+            .map(SchurSolver::shape)
+    }
+}
+
+/// `Ok(false)` if the solution is finite, else the singular-Jacobian error.
+fn finite(rhs: &[f64]) -> Result<bool> {
+    if rhs.iter().any(|v| !v.is_finite()) {
+        return Err(FemError::Linear(
+            "the Jacobian is singular (non-finite solution): a part of the structure may be \
+             unsupported or massless"
+                .into(),
+        ));
+    }
+    Ok(false)
 }

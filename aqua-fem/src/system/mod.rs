@@ -13,6 +13,7 @@ mod linear_solver;
 mod load_derivatives;
 mod net_triangles;
 mod rods;
+mod schur;
 
 use crate::bending::HingeEval;
 use crate::cable::CableEval;
@@ -24,6 +25,7 @@ use crate::symmetric::SymmetricSolver;
 pub(crate) use assembly::mul_mass;
 pub(crate) use bodies::body_poses_with;
 use linear_solver::LinearSolver;
+use schur::SchurSolver;
 
 pub(crate) const NONE: usize = usize::MAX;
 
@@ -132,6 +134,13 @@ pub(crate) struct System {
     /// Position of the diagonal entry of each free DOF in `values`.
     pub diag_pos: Vec<usize>,
     solver: Option<LinearSolver>,
+    /// Part of each free DOF when the model is partitioned (docs/theory/fem.md#block-solve).
+    part_of_free: Option<Vec<usize>>,
+    /// The block solver of the partition, built on first use; `None` inside once it was found
+    /// not to pay (the LU then serves).
+    schur: Option<Option<SchurSolver>>,
+    /// The last LU-path factorisation is the block solver's.
+    schur_active: bool,
     pub n_factorisations: usize,
     /// Factorise the symmetric part as L·D·Lᵀ and refine on the rest (dynamics), with the LU
     /// as fallback (docs/theory/fem.md#sparse-linear-algebra).

@@ -9,6 +9,7 @@ mod bending;
 mod bodies;
 mod buoys;
 mod mesh;
+mod partition;
 mod structure;
 mod water;
 
@@ -123,7 +124,13 @@ pub fn build(scene: &Scene, prescribed: Prescribed) -> Result<Built> {
     let env = structure::environment(scene, sea.constants());
     let mut st = structure::build_structure(scene, &mesh, env, prescribed)?;
     add_buoys(&file, &farms, &mut st)?;
-    let model = st.builder.build().map_err(|e| SimError::at(file, e))?;
+    let mut model = st
+        .builder
+        .build()
+        .map_err(|e| SimError::at(file.clone(), e))?;
+    model
+        .set_partition(partition::cage_partition(&mesh))
+        .map_err(|e| SimError::at(file, e))?;
     let wake_cages = cage_wake_objects(scene, &mesh, &farms);
     let loads = water::build_water_loads(
         scene,
