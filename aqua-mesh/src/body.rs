@@ -51,9 +51,7 @@ impl BoxHull {
             ("hull.width", self.width),
             ("hull.height", self.height),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(MeshError::param(object, key, v, "a finite number > 0 [m]"));
-            }
+            crate::limits::length(object, key, v, "")?;
         }
         if !self.centre.iter().all(|c| c.is_finite()) {
             return Err(MeshError::param(

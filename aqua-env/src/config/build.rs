@@ -3,7 +3,7 @@
 
 use super::schema::{CurrentKind, SeaSpec, WaveKind};
 use super::summary::{IrregularSummary, SeaSummary, regular_summary, regular_warnings};
-use super::validate::{current_speeds, irregular_spec, need, positive, unused, vec3};
+use super::validate::{current_speeds, irregular_spec, need, positive, unused, vec3, wave_period};
 use crate::airy::{Component, LinearSum};
 use crate::constants::Constants;
 use crate::current::{Current, CurrentProfile, Schedule};
@@ -217,14 +217,13 @@ impl SeaSpec {
                     )?,
                     "crest-to-trough height in m",
                 )?;
-                let t = positive(
+                let t = wave_period(
                     "sea.waves.period",
                     need(
                         w.period,
                         "sea.waves.period",
                         "regular waves need period (s)",
                     )?,
-                    "period in s",
                 )?;
                 let comp = Component::new(h / 2.0, t, direction, phase, c.depth, c.gravity)?;
                 let st = w.stretching.unwrap_or(Stretching::None);

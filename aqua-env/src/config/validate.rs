@@ -22,6 +22,23 @@ pub(super) fn positive(key: &str, v: f64, what: &str) -> Result<f64, EnvError> {
     }
 }
 
+/// Longest regular wave period accepted [s]: an hour (swell is under 30 s; a longer "wave" is
+/// a tide or a current, and the dispersion relation has no root to find for ω → 0 in f64).
+pub(super) const MAX_WAVE_PERIOD: f64 = 3600.0;
+
+/// A regular wave's period T [s]: 0 < T ≤ [`MAX_WAVE_PERIOD`].
+pub(super) fn wave_period(key: &str, v: f64) -> Result<f64, EnvError> {
+    if v > 0.0 && v <= MAX_WAVE_PERIOD {
+        Ok(v)
+    } else {
+        Err(EnvError::range(
+            key,
+            v,
+            format!("must be a number > 0 and <= {MAX_WAVE_PERIOD} s (a wave period in s)"),
+        ))
+    }
+}
+
 pub(super) fn need<T: Copy>(v: Option<T>, key: &str, why: &str) -> Result<T, EnvError> {
     v.ok_or_else(|| EnvError::missing(key, why))
 }

@@ -41,6 +41,18 @@ pub(crate) fn ref_hint(mesh: &Mesh, reference: &str) -> String {
                 objects.join(", ")
             )
         }
+        Some((object, group))
+            if mesh
+                .objects
+                .iter()
+                .any(|o| o.name == object && o.kind == aqua_mesh::ObjectKind::Body) =>
+        {
+            format!(
+                "body '{object}' has no point with name = \"{}\" (a body's points are its \
+                 [[body.point]] tables, by their `name` key, and its `hull`); valid: {hint}",
+                group.split('[').next().unwrap_or(group)
+            )
+        }
         _ => format!("valid: {hint}"),
     }
 }
