@@ -207,6 +207,36 @@ fn chain(e: &dyn std::error::Error) -> String {
 }
 
 #[test]
+fn a_body_with_the_midpoint_rule_is_warned_and_with_hht_not() {
+    let codes = |scheme: &str| {
+        let text = barge(
+            -1.0,
+            0.0,
+            1.0,
+            &format!(
+                "[analysis]\nkind = \"dynamic\"\n[analysis.dynamic]\nscheme = \"{scheme}\"\n\
+                 t_end = 0.1\n"
+            ),
+        );
+        let scene = read_scene(
+            SceneInput::Text {
+                text: &text,
+                path: Path::new("bodies-test.toml"),
+            },
+            &[],
+        )
+        .unwrap();
+        let prep = prepare(PrepareOptions::scene(scene)).unwrap();
+        prep.diagnostics()
+            .iter()
+            .map(|d| d.code)
+            .collect::<Vec<_>>()
+    };
+    assert!(codes("midpoint").contains(&"fem/body-scheme"));
+    assert!(!codes("hht").contains(&"fem/body-scheme"));
+}
+
+#[test]
 fn bad_bodies_are_refused_naming_the_key() {
     let read = |text: &str| {
         read_scene(
