@@ -16,7 +16,7 @@
 //! (VmHWM) is its own. Prints a table and writes `scaling-farm.csv` and `scaling-farm.png`
 //! into `$AQUA_SCALING_OUT` (default: a `scaling-farm` folder in the target directory), with
 //! the least-squares slope of log(wall per step) against log(free DOFs) over all points.
-//! Run it alone (about 15 min): `cargo bench -p aqua-study --bench farm_scaling`. Not part of
+//! Run it alone (about 10 min): `cargo bench -p aqua-study --bench farm_scaling`. Not part of
 //! any test.
 
 use aqua_sim::{Observer, Override, PrepareOptions, Simulation};
