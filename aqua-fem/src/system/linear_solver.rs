@@ -89,6 +89,14 @@ impl System {
         self.sym_refactor = true;
     }
 
+    /// As `require_fresh_factor`, and the pause after failed kept factors ends: a run
+    /// restored to a saved state repeats its steps bit for bit.
+    pub fn restart_factor(&mut self) {
+        self.sym_refactor = true;
+        self.sym_skip = 0;
+        self.sym_backoff = 0;
+    }
+
     /// After the symmetric path failed: LU for the next `SYMMETRIC_PAUSE` factorisations.
     fn symmetric_fallback(&mut self) {
         self.n_symmetric_fallbacks += 1;
