@@ -39,6 +39,9 @@ pub struct LinearSolverStats {
     pub factorisations: usize,
     /// Symmetric solves that kept an earlier L·D·Lᵀ as the preconditioner.
     pub factor_reuses: usize,
+    /// Solves with a kept L·D·Lᵀ that did not contract, so that the factor was replaced
+    /// (each is counted in `factorisations`, not in `factor_reuses`).
+    pub stale_failures: usize,
     /// Symmetric solves that fell back to the LU.
     pub fallbacks: usize,
     /// Symmetric solves whose sweeps stalled and that GMRES finished
@@ -339,6 +342,7 @@ impl<'m> DynamicSolver<'m> {
         LinearSolverStats {
             factorisations: self.sys.n_factorisations,
             factor_reuses: self.sys.n_factor_reuses,
+            stale_failures: self.sys.n_stale_failures,
             fallbacks: self.sys.n_symmetric_fallbacks,
             gmres_rescues: self.sys.sym.as_ref().map_or(0, |s| s.gmres_rescues),
             refinement_sweeps: self.sys.n_refinement_sweeps,

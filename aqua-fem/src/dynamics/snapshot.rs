@@ -133,6 +133,6 @@ impl DynamicSolver<'_> {
     /// The next Newton iteration forms and factorises its Jacobian afresh.
     fn fresh_factor(&mut self) {
         self.lu_valid = false;
-        self.sys.require_fresh_factor();
+        self.sys.restart_factor();
     }
 }

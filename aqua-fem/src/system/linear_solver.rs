@@ -16,6 +16,9 @@ const SYMMETRIC_PAUSE: usize = 64;
 /// sweeps beyond the last solve with a fresh one (a numeric factorisation of the reference
 /// cage costs about as much as 7 sweeps).
 const STALE_EXTRA_SWEEPS: usize = 4;
+/// Longest pause, in factorisations, before a kept L·D·Lᵀ is tried again after kept factors
+/// failed in a row (docs/theory/fem.md#sparse-linear-algebra).
+const MAX_STALE_PAUSE: usize = 8;
 
 /// Sparse LU with a symbolic factorisation computed once.
 pub(super) struct LinearSolver {
@@ -53,7 +56,14 @@ impl System {
                     self.sym_unusable = self.sym.is_none();
                 }
                 if let Some(s) = self.sym.as_mut() {
-                    if !self.sym_refactor {
+                    // After a kept factor failed, the next ones are skipped for a pause that
+                    // doubles with each failure in a row: their failed solve is the cost of a
+                    // factorisation on a scene whose tangent changes much between iterations.
+                    let skip = !self.sym_refactor && self.sym_skip > 0;
+                    if skip {
+                        self.sym_skip -= 1;
+                    }
+                    if !self.sym_refactor && !skip {
                         // The last L·D·Lᵀ stays the preconditioner; the refinement solves
                         // with this J (docs/theory/fem.md#sparse-linear-algebra).
                         s.set_matrix(&self.values);
@@ -77,6 +87,14 @@ impl System {
     /// The next `factorize` factorises afresh instead of keeping an earlier L·D·Lᵀ.
     pub fn require_fresh_factor(&mut self) {
         self.sym_refactor = true;
+    }
+
+    /// As `require_fresh_factor`, and the pause after failed kept factors ends: a run
+    /// restored to a saved state repeats its steps bit for bit.
+    pub fn restart_factor(&mut self) {
+        self.sym_refactor = true;
+        self.sym_skip = 0;
+        self.sym_backoff = 0;
     }
 
     /// After the symmetric path failed: LU for the next `SYMMETRIC_PAUSE` factorisations.
@@ -112,6 +130,7 @@ impl System {
                     return Ok(false);
                 }
                 (Ok(false), false) => {
+                    self.sym_backoff = 0;
                     // Refactorise once the stale factor costs more sweeps than a new one.
                     if sym.last_sweeps > self.sym_fresh_sweeps + STALE_EXTRA_SWEEPS {
                         self.sym_refactor = true;
@@ -121,6 +140,9 @@ impl System {
                 (Err(_), true) => return Err(()),
                 (Err(_), false) => {
                     self.n_factor_reuses -= 1;
+                    self.n_stale_failures += 1;
+                    self.sym_backoff = (2 * self.sym_backoff).clamp(1, MAX_STALE_PAUSE);
+                    self.sym_skip = self.sym_backoff;
                     if sym.refactor().is_err() {
                         return Err(());
                     }

@@ -163,6 +163,13 @@ pub(crate) struct System {
     sym_refactor: bool,
     /// Refinement sweeps of the last solve with a fresh L·D·Lᵀ.
     sym_fresh_sweeps: usize,
+    /// Solves with a kept L·D·Lᵀ that did not contract, so that the factor was replaced and
+    /// the solve repeated.
+    pub n_stale_failures: usize,
+    /// Factorisations left that skip the kept L·D·Lᵀ after it failed, and the length of the
+    /// next such pause (doubled at each failure in a row).
+    sym_skip: usize,
+    sym_backoff: usize,
     load_scratch: (Box<ElementLoad>, Box<ElementLoad>),
     /// When set, the cables' (and net triangles') elastic force is the discrete gradient between these start and
     /// end positions of the step (docs/theory/fem.md#energy-consistent-midpoint), evaluated
