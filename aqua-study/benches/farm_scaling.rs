@@ -4,7 +4,8 @@
 //! current and a short-crested JONSWAP sea) run with HHT-α, the default scheme, in two
 //! families:
 //!
-//! * **farms at fixed λ** (1.6 m net elements): 1 × 1, 1 × 2, 2 × 2 and 2 × 4 cages;
+//! * **farms at fixed λ** (1.6 m net elements): 1 × 1, 1 × 2, 2 × 2, 2 × 4, 3 × 4 and 4 × 4
+//!   cages (14 000 to about 200 000 free DOFs);
 //! * **an element-length ladder of one cage** (1 × 1): 3.2, 1.6, 1.13, 0.8 and 0.55 m net
 //!   elements (about 5 000 to 100 000 free DOFs; 0.38 m, 200 000, would take about half an
 //!   hour on its own: docs/theory/fem.md#scaling-of-a-farm).
@@ -16,8 +17,10 @@
 //! (VmHWM) is its own. Prints a table and writes `scaling-farm.csv` and `scaling-farm.png`
 //! into `$AQUA_SCALING_OUT` (default: a `scaling-farm` folder in the target directory), with
 //! the least-squares slope of log(wall per step) against log(free DOFs) over all points.
-//! Run it alone (about 10 min): `cargo bench -p aqua-study --bench farm_scaling`. Not part of
-//! any test.
+//! Run it alone (about 15 min): `cargo bench -p aqua-study --bench farm_scaling`. Not part of
+//! any test. With `AQUA_SCALING_KEEP` naming an earlier `scaling-farm.csv`, the points found
+//! there (same family, rows, columns and element length) are taken from it, each with the load
+//! it was measured at, and only the others are run.
 
 use aqua_sim::{Observer, Override, PrepareOptions, Simulation};
 use std::path::{Path, PathBuf};
@@ -60,6 +63,40 @@ impl Point {
     fn bytes_per_dof(&self) -> f64 {
         self.peak_rss / self.dofs.max(1) as f64
     }
+}
+
+/// The point of `family rows columns element_length` in the CSV written by [`write`], if any.
+fn kept(
+    csv: &str,
+    family: &str,
+    rows: usize,
+    columns: usize,
+    element_length: f64,
+) -> Option<Point> {
+    csv.lines().skip(1).find_map(|l| {
+        let w: Vec<&str> = l.split(',').collect();
+        let f = |k: usize| w.get(k)?.parse::<f64>().ok();
+        let same = w.first() == Some(&family)
+            && f(1)? as usize == rows
+            && f(2)? as usize == columns
+            && (f(3)? - element_length).abs() < 1e-9;
+        same.then(|| {
+            Some(Point {
+                family: family.to_string(),
+                rows,
+                columns,
+                element_length,
+                dofs: f(4)? as usize,
+                steps: f(5)? as usize,
+                iterations: f(6)? as usize,
+                factorisations: f(7)? as usize,
+                halvings: f(8)? as usize,
+                dyn_wall: f(9)?,
+                peak_rss: f(13)? * 1e6,
+                load: (f(15)?, f(16)?),
+            })
+        })?
+    })
 }
 
 /// The one-minute load average of the machine (/proc/loadavg; NaN where there is none).
@@ -140,8 +177,13 @@ fn run_point(family: &str, rows: usize, columns: usize, element_length: f64) {
     );
 }
 
-/// Parent: runs `family rows columns element_length` in a child process.
-fn measure(family: &str, rows: usize, columns: usize, element_length: f64) -> Point {
+/// Parent: runs `family rows columns element_length` in a child process, or takes it from
+/// `keep` (an earlier CSV's text).
+fn measure(keep: &str, family: &str, rows: usize, columns: usize, element_length: f64) -> Point {
+    if let Some(p) = kept(keep, family, rows, columns, element_length) {
+        eprintln!("{family} {rows}×{columns} {element_length} m: kept from AQUA_SCALING_KEEP");
+        return p;
+    }
     let exe = std::env::current_exe().unwrap();
     let out = Command::new(exe)
         .args([
@@ -253,7 +295,7 @@ fn write(pts: &[Point]) {
     let s_all = slope(&all);
     let mut series = Vec::new();
     for (family, name) in [
-        ("farms", "farms of 1 × 1 … 2 × 4 cages, 1.6 m net elements"),
+        ("farms", "farms of 1 × 1 … 4 × 4 cages, 1.6 m net elements"),
         ("ladder", "one cage, net elements 3.2 … 0.55 m"),
     ] {
         let fam: Vec<(f64, f64)> = pts
@@ -304,17 +346,23 @@ fn main() {
     if !args.iter().any(|a| a == "--bench") {
         return;
     }
+    let keep = std::env::var_os("AQUA_SCALING_KEEP")
+        .map(|p| {
+            std::fs::read_to_string(&p)
+                .unwrap_or_else(|e| panic!("AQUA_SCALING_KEEP = {}: {e}", p.to_string_lossy()))
+        })
+        .unwrap_or_default();
     let mut pts = Vec::new();
     for el in [3.2, 1.6, 1.13, 0.8, 0.55] {
-        pts.push(measure("ladder", 1, 1, el));
+        pts.push(measure(&keep, "ladder", 1, 1, el));
     }
     let one = pts[1].clone();
     pts.push(Point {
         family: "farms".into(),
         ..one
     });
-    for (rows, columns) in [(1, 2), (2, 2), (2, 4)] {
-        pts.push(measure("farms", rows, columns, 1.6));
+    for (rows, columns) in [(1, 2), (2, 2), (2, 4), (3, 4), (4, 4)] {
+        pts.push(measure(&keep, "farms", rows, columns, 1.6));
     }
     write(&pts);
 }

@@ -71,6 +71,34 @@ fn force_text(v: f64) -> String {
     }
 }
 
+/// A label of a log axis: only the ticks at 1, 2 and 5 times a power of ten are named (the
+/// others stay as unlabelled ticks, so that the labels of a decade do not run into each
+/// other), in compact form: 500, 2k, 20k, 1M, 0.05.
+fn log_tick_text(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return String::new();
+    }
+    let mut decade = 10f64.powf(v.log10().floor());
+    if (v / decade).round() >= 10.0 {
+        decade *= 10.0;
+    }
+    let mantissa = (v / decade).round();
+    if ![1.0, 2.0, 5.0].contains(&mantissa) || (v / decade - mantissa).abs() > 1e-6 * mantissa {
+        return String::new();
+    }
+    let trim = |x: f64| {
+        let t = format!("{x:.3}");
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    if v >= 1e6 {
+        format!("{}M", trim(v / 1e6))
+    } else if v >= 1e3 {
+        format!("{}k", trim(v / 1e3))
+    } else {
+        trim(v)
+    }
+}
+
 /// A picture written.
 #[derive(Debug, Clone, Serialize)]
 pub struct Picture {
@@ -253,6 +281,8 @@ pub fn loglog_chart(
             .configure_mesh()
             .x_desc(x_label)
             .y_desc(y_label)
+            .x_label_formatter(&|v| log_tick_text(*v))
+            .y_label_formatter(&|v| log_tick_text(*v))
             .label_style(("sans-serif", 16))
             .axis_desc_style(("sans-serif", 18))
             .draw()
@@ -664,6 +694,41 @@ pub fn plot_study(study: &Study, path: &Path) -> Result<Picture> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A log axis names 1, 2 and 5 times a power of ten compactly and leaves the other ticks
+    /// of the decade (60 000, 70 000, …, which ran into each other) unnamed.
+    #[test]
+    fn log_ticks_name_one_two_and_five_of_each_decade() {
+        let named: Vec<String> = [
+            5_000.0,
+            6_000.0,
+            10_000.0,
+            20_000.0,
+            30_000.0,
+            50_000.0,
+            60_000.0,
+            70_000.0,
+            99_999.999_999,
+            200_000.0,
+            2e6,
+            0.05,
+            0.07,
+            500.0,
+            1.0,
+        ]
+        .iter()
+        .map(|&v| log_tick_text(v))
+        .collect();
+        assert_eq!(
+            named,
+            [
+                "5k", "", "10k", "20k", "", "50k", "", "", "100k", "200k", "2M", "0.05", "", "500",
+                "1"
+            ]
+        );
+        assert_eq!(log_tick_text(0.0), "");
+        assert_eq!(log_tick_text(f64::NAN), "");
+    }
 
     /// A farm-like run folder with more line ends than a legend can hold: the picture keeps
     /// the curves with the largest peaks, says how many there were, leaves the all-zero
