@@ -10,9 +10,11 @@ use crate::seabed::BedLaw;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// The landing or lift-off whose dynamic contact force, as far as the line passes it on, is at
-/// least this multiple of the node's weight counts as an impact (J ≥ 1).
-pub const CONTACT_IMPACT: f64 = 1.0;
+/// A landing or lift-off counts as an impact when its dynamic contact force, as far as the line
+/// passes it on, per metre of line at the node, is at least this multiple of the node's weight
+/// [1/m] (J ≥ 0.3 m⁻¹; calibrated on the mooring chain at 40 and 80 segments,
+/// docs/theory/fem.md#seabed-contact-resolution).
+pub const CONTACT_IMPACT: f64 = 0.3;
 
 /// An impact's amplitude loss above which a run warns that the seabed contact is not resolved
 /// (1 %).
@@ -25,8 +27,10 @@ pub const CONTACT_LOSS_WARNING: f64 = 0.01;
 pub struct ContactResolution {
     /// Node crossings of the bed plane (landings and lift-offs) over the accepted steps.
     pub events: usize,
-    /// Those whose impact J = τ·m·ω_c·|v_z|/w reached [`CONTACT_IMPACT`].
+    /// Those whose impact J reached [`CONTACT_IMPACT`].
     pub impacts: usize,
+    /// The largest impact J of any landing or lift-off [1/m].
+    pub largest_impact: f64,
     /// The impact with the largest amplitude loss (the first of equal ones): its node.
     pub node: usize,
     /// Its contact frequency ω_c = √(k_c/m) [rad/s]: bed stiffness k_c = k_b·d_c·L_i (plus a
@@ -34,10 +38,12 @@ pub struct ContactResolution {
     pub omega: f64,
     /// Its step Δt [s].
     pub dt: f64,
-    /// Its impact J: the dynamic contact force m·ω_c·|v_z| of a landing (or lift-off) at the
-    /// vertical speed |v_z| (the larger of the step's ends), over the node's weight w, times
+    /// Its impact J [1/m]: the dynamic contact force m·ω_c·|v_z| of a landing (or lift-off) at
+    /// the vertical speed |v_z| (the larger of the step's ends) over the node's weight w, times
     /// the share τ = k_a/(k_a + k_c) of it the node's line passes on (k_a = Σ EA/L0 of its
-    /// cable elements).
+    /// cable elements), per length L_i = Σ L0/2 of line at the node: on a smooth line a node
+    /// lands at a speed that grows with its element length, so J is a property of the line's
+    /// motion, not of its mesh.
     pub impact: f64,
     /// The share of a contact oscillation's amplitude the scheme removes over one contact
     /// period, 1 − ρ(ω_c·Δt)^max(1, 2π/(ω_c·Δt)), ρ the scheme's spectral radius on a linear
@@ -60,6 +66,8 @@ pub(crate) struct ContactTracker {
     k: Vec<f64>,
     /// Axial stiffness k_a = Σ EA/L0 of each node's cable elements [N/m].
     axial: Vec<f64>,
+    /// Line length L_i = Σ L0/2 of each node's cable elements [m].
+    length: Vec<f64>,
 }
 
 impl ContactTracker {
@@ -81,15 +89,18 @@ impl ContactTracker {
         if k.iter().all(|&k| k <= 0.0) {
             return None;
         }
-        let mut axial = vec![0.0; n];
+        let (mut axial, mut length) = (vec![0.0; n], vec![0.0; n]);
         for e in model.elements.iter().filter(|e| e.l0 > 0.0) {
-            axial[e.a] += e.ea / e.l0;
-            axial[e.b] += e.ea / e.l0;
+            for i in [e.a, e.b] {
+                axial[i] += e.ea / e.l0;
+                length[i] += 0.5 * e.l0;
+            }
         }
         Some(Self {
             zs: -seabed.depth,
             k,
             axial,
+            length,
         })
     }
 
@@ -112,13 +123,15 @@ impl ContactTracker {
             out.events += 1;
             let m = model.lumped_mass[i] + added.get(i).map_or(0.0, |a| a[2][2]);
             let w = model.weight[i][2].abs();
-            if m <= 0.0 || w <= 0.0 {
+            let l = self.length[i];
+            if m <= 0.0 || w <= 0.0 || l <= 0.0 {
                 continue;
             }
             let omega = (k / m).sqrt();
             let speed = vn[i][2].abs().max(v1[i][2].abs());
             let share = self.axial[i] / (self.axial[i] + k);
-            let impact = share * m * omega * speed / w;
+            let impact = share * m * omega * speed / (w * l);
+            out.largest_impact = out.largest_impact.max(impact);
             if impact < CONTACT_IMPACT {
                 continue;
             }
@@ -129,6 +142,7 @@ impl ContactTracker {
                 *out = ContactResolution {
                     events: out.events,
                     impacts: out.impacts,
+                    largest_impact: out.largest_impact,
                     node: i,
                     omega,
                     dt: h,
