@@ -190,6 +190,7 @@ impl<'m> DynamicSolver<'m> {
         let nf = sys.n_free();
         let lines = LineRelaxation::new(model, &sys);
         let settings_scheme = settings.clone();
+        let contact = contact_resolution::ContactTracker::new(model);
         let mut s = Self {
             model,
             lines,
@@ -233,8 +234,7 @@ impl<'m> DynamicSolver<'m> {
                         tolerance,
                         ..Default::default()
                     }),
-                seabed_contact: contact_resolution::ContactTracker::new(model)
-                    .map(|_| ContactResolution::default()),
+                seabed_contact: contact.as_ref().map(|_| ContactResolution::default()),
                 ..StepControl::default()
             },
             kinetic_free: 0.0,
@@ -244,7 +244,7 @@ impl<'m> DynamicSolver<'m> {
             extremes: settings_scheme
                 .extreme_tolerance
                 .map(|tol| extreme_control::ExtremeControl::new(model, tol)),
-            contact: contact_resolution::ContactTracker::new(model),
+            contact,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for &gd in &s.sys.dof_of_free {
