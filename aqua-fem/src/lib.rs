@@ -142,9 +142,10 @@ mod system;
 
 pub use bending::Hinge;
 pub use dynamics::{
-    DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies,
-    ExtremeResolution, LinearSolverKind, LinearSolverStats, MassMatrix, Snapshot, StepControl,
-    StepEvent, StepReport, TensionResolution,
+    CONTACT_IMPACT, CONTACT_LOSS_WARNING, ContactResolution, DEFAULT_ALPHA, DEFAULT_THETA,
+    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, ExtremeResolution,
+    LinearSolverKind, LinearSolverStats, MassMatrix, Snapshot, StepControl, StepEvent, StepReport,
+    TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

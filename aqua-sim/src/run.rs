@@ -307,6 +307,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = time_step_warning(record, model) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = seabed_contact_warning(integrator, record, model) {
+                    obs.diagnostic(&d);
+                }
                 if let Some(d) = extremes_warning(record, &prep.built.group_names) {
                     obs.diagnostic(&d);
                 }
@@ -466,6 +469,53 @@ fn time_step_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
             res.range[0],
             res.range[1],
             100.0 * res.error
+        ),
+    ))
+}
+
+/// A warning when landings and lift-offs on the seabed excite its contact at a frequency the
+/// scheme damps at this step: [`aqua_fem::ContactResolution::loss`] above
+/// [`aqua_fem::CONTACT_LOSS_WARNING`] (docs/theory/fem.md#seabed-contact-resolution).
+/// It names the element group of the node with the largest loss.
+fn seabed_contact_warning(
+    integrator: &Integrator,
+    record: &RunRecord,
+    model: &Model,
+) -> Option<Diagnostic> {
+    let c = record.step_control.as_ref()?.seabed_contact?;
+    if c.impacts == 0 || c.loss <= aqua_fem::CONTACT_LOSS_WARNING {
+        return None;
+    }
+    let node = match model
+        .elements()
+        .iter()
+        .position(|e| e.a == c.node || e.b == c.node)
+        .and_then(|e| model.groups().iter().find(|g| g.elements.contains(&e)))
+    {
+        Some(g) => format!("node {} of `{}`", c.node, g.name),
+        None => format!("node {}", c.node),
+    };
+    let scheme = match integrator {
+        Integrator::Hht(s) if s.midpoint => format!("the midpoint rule with θ = {}", s.theta),
+        Integrator::Hht(s) => format!("HHT-α (α = {})", s.alpha),
+        _ => return None,
+    };
+    Some(Diagnostic::warning(
+        "fem/seabed-contact",
+        "dynamics",
+        format!(
+            "anchor and touchdown tension extremes may be up to {:.1} % low: {} landings and \
+             lift-offs on the seabed (e.g. {node}) excite its contact at ω_c = {:.0} rad/s, \
+             which {scheme} does not resolve at dt = {} s (ω_c·dt = {:.2}: it removes that \
+             share of a contact oscillation per contact period; \
+             docs/theory/fem.md#seabed-contact-resolution); dt ≤ {:.2e} s or \
+             `scheme = \"midpoint\"` with θ = ½ resolves it",
+            100.0 * c.loss,
+            c.impacts,
+            c.omega,
+            c.dt,
+            c.omega * c.dt,
+            c.resolving_dt,
         ),
     ))
 }

@@ -121,6 +121,32 @@ impl Hht {
         }
     }
 
+    /// Spectral radius ρ(Ω) of the scheme on an undamped linear oscillator at Ω = ωΔt: the
+    /// largest |λ| of the step's amplification matrix of (x, Δt·v, Δt²·a)
+    /// (docs/theory/fem.md#hht-spectral-properties); 1 at Ω = 0, (1 − α)/(1 + α) as Ω → ∞.
+    pub(crate) fn spectral_radius(&self, omega_dt: f64) -> f64 {
+        let (alpha, beta, gamma) = (self.alpha, self.beta, self.gamma);
+        let w2 = omega_dt * omega_dt;
+        // Columns: the step from the unit states (x, v, a) = e_j, with Δt = 1.
+        let mut m = [[0.0; 3]; 3];
+        for (j, e) in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            .iter()
+            .enumerate()
+        {
+            let [x0, v0, a0] = *e;
+            // a1 + (1 − α)·Ω²·x1 + α·Ω²·x0 = 0, x1 = x0 + v0 + (½ − β)·a0 + β·a1.
+            let pred = x0 + v0 + (0.5 - beta) * a0;
+            let a1 =
+                (-(1.0 - alpha) * w2 * pred - alpha * w2 * x0) / (1.0 + (1.0 - alpha) * w2 * beta);
+            let x1 = pred + beta * a1;
+            let v1 = v0 + (1.0 - gamma) * a0 + gamma * a1;
+            for (i, c) in [x1, v1, a1].into_iter().enumerate() {
+                m[i][j] = c;
+            }
+        }
+        super::contact_resolution::spectral_radius_3(&m)
+    }
+
     /// Newmark's a_{n+1} = (x_{n+1} − x_n − h·v_n)/(βh²) − (1/(2β) − 1)·a_n and
     /// v_{n+1} = v_n + h·[(1 − γ)·a_n + γ·a_{n+1}] of one DOF.
     #[inline]

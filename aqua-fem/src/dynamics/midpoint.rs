@@ -34,6 +34,28 @@ impl Midpoint {
         }
     }
 
+    /// Spectral radius ρ(Ω) of the rule on an undamped linear oscillator at Ω = ωΔt:
+    /// x1 − x0 = Δt·((1 − θ)·v0 + θ·v1), v1 − v0 = −Δt·ω²·(x0 + x1)/2; 1 for θ = ½ and for
+    /// Ω → ∞ (docs/theory/fem.md#energy-decaying-midpoint).
+    pub(crate) fn spectral_radius(&self, omega_dt: f64) -> f64 {
+        let th = self.theta;
+        let w2 = omega_dt * omega_dt;
+        // Columns: the step from (x, Δt·v) = e_j.
+        let col = |x0: f64, v0: f64| {
+            let v1 = (v0 - w2 * x0 - 0.5 * w2 * (1.0 - th) * v0) / (1.0 + 0.5 * w2 * th);
+            (x0 + (1.0 - th) * v0 + th * v1, v1)
+        };
+        let (a, c) = col(1.0, 0.0);
+        let (b, d) = col(0.0, 1.0);
+        let (tr, det) = (a + d, a * d - b * c);
+        let disc = tr * tr - 4.0 * det;
+        if disc < 0.0 {
+            det.abs().sqrt()
+        } else {
+            0.5 * (tr.abs() + disc.sqrt())
+        }
+    }
+
     /// ∂r/∂x_{n+1}: m = 1/(θh²), k = ½, c = 1/h.
     pub(crate) fn coef(&self, h: f64) -> Coef {
         Coef {

@@ -5,6 +5,7 @@
 //! (`hht.rs`, `midpoint.rs`) behind the dispatch of `scheme.rs`; a saved state for a
 //! coupling's save and restore (`snapshot.rs`).
 
+mod contact_resolution;
 mod energy;
 mod extreme_control;
 mod hht;
@@ -15,6 +16,7 @@ mod settings;
 mod snapshot;
 mod step_control;
 
+pub use contact_resolution::{CONTACT_IMPACT, CONTACT_LOSS_WARNING, ContactResolution};
 pub use energy::{ENERGY_GROWTH_TOL, Energies};
 pub use extreme_control::ExtremeResolution;
 pub(crate) use hht::{HhtForces, use_hht_force};
@@ -127,6 +129,9 @@ pub struct DynamicSolver<'m> {
     guarded: Option<Balance>,
     /// Extremes to a tolerance, when `extreme_tolerance` is set.
     extremes: Option<extreme_control::ExtremeControl>,
+    /// The seabed contact's landings and lift-offs (None without a seabed the nodes can touch;
+    /// docs/theory/fem.md#seabed-contact-resolution).
+    contact: Option<contact_resolution::ContactTracker>,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -185,6 +190,7 @@ impl<'m> DynamicSolver<'m> {
         let nf = sys.n_free();
         let lines = LineRelaxation::new(model, &sys);
         let settings_scheme = settings.clone();
+        let contact = contact_resolution::ContactTracker::new(model);
         let mut s = Self {
             model,
             lines,
@@ -228,6 +234,7 @@ impl<'m> DynamicSolver<'m> {
                         tolerance,
                         ..Default::default()
                     }),
+                seabed_contact: contact.as_ref().map(|_| ContactResolution::default()),
                 ..StepControl::default()
             },
             kinetic_free: 0.0,
@@ -237,6 +244,7 @@ impl<'m> DynamicSolver<'m> {
             extremes: settings_scheme
                 .extreme_tolerance
                 .map(|tol| extreme_control::ExtremeControl::new(model, tol)),
+            contact,
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for &gd in &s.sys.dof_of_free {

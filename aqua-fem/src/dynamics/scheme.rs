@@ -215,6 +215,14 @@ impl Scheme {
         }
     }
 
+    /// Spectral radius of the scheme on an undamped linear oscillator at Ω = ωΔt.
+    pub(crate) fn spectral_radius(&self, omega_dt: f64) -> f64 {
+        match self {
+            Self::Hht(s) => s.spectral_radius(omega_dt),
+            Self::Midpoint(s) => s.spectral_radius(omega_dt),
+        }
+    }
+
     /// β of the Newmark family's leading truncation term for the local error estimate.
     pub(crate) fn error_beta(&self) -> f64 {
         match self {

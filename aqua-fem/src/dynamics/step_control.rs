@@ -69,6 +69,10 @@ pub struct StepControl {
     /// (docs/theory/fem.md#extremes-to-a-tolerance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extremes: Option<super::ExtremeResolution>,
+    /// The seabed contact's landings and lift-offs and how well the step resolves them, with a
+    /// seabed the nodes can touch (docs/theory/fem.md#seabed-contact-resolution).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seabed_contact: Option<super::ContactResolution>,
 }
 
 impl StepControl {
@@ -231,6 +235,20 @@ impl DynamicSolver<'_> {
                     }
                     self.full_newton = false;
                     self.track_time_error(h);
+                    // Landings and lift-offs (docs/theory/fem.md#seabed-contact-resolution).
+                    if let (Some(tracker), Some(out)) =
+                        (self.contact.as_ref(), self.control.seabed_contact.as_mut())
+                    {
+                        tracker.step(
+                            self.model,
+                            &self.scheme,
+                            &self.sys.added,
+                            (&self.state.x, &self.state.v),
+                            (&self.x1, &self.v1),
+                            h,
+                            out,
+                        );
+                    }
                     self.clamp = false;
                     self.total_iterations += iters;
                     self.n_steps += 1;
