@@ -70,7 +70,8 @@ pub(crate) struct System {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     pub values: Vec<f64>,
-    cable_pos: Vec<[usize; 36]>,
+    /// Positions in `values` of each cable element's 6 × 6 block (NONE where a DOF is held).
+    pub(crate) cable_pos: Vec<[usize; 36]>,
     hinge_pos: Vec<[usize; 81]>,
     rod_pos: Vec<[usize; ROD_DOFS * ROD_DOFS]>,
     net_pos: Vec<[usize; 81]>,

@@ -36,6 +36,7 @@ struct StaticKeys {
     stabilisation: f64,
     line_search: bool,
     watchdog: bool,
+    stretch_damping: bool,
     mesh_sequence: usize,
     #[serde(skip)]
     time: f64,

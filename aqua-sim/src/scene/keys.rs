@@ -521,6 +521,7 @@ impl Keys for StaticSettings {
             "stabilisation",
             "line_search",
             "watchdog",
+            "stretch_damping",
             "mesh_sequence",
         ])
     }
