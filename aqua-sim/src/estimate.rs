@@ -91,10 +91,11 @@ impl Workload {
 
     /// Estimated static solve [s] (0 without one). With a mesh sequence, level k (the nets'
     /// element length 2^k times the scene's) has 1/4^k of the DOFs and elements and 1/16^k of
-    /// the factorisation, and every level but the coarsest, started from the level below, needs
-    /// the iterations of that coarser level solved alone (measured: the full-scale farm 322
-    /// fine iterations from its 3.2 m equilibrium, the model 646; the 1.25 m reference cage
-    /// 137, the model 150; docs/theory/fem.md#mesh-sequencing).
+    /// the factorisation, and every level, started from the level below, needs about the
+    /// iterations of the coarsest level solved alone (measured on the full-scale farm:
+    /// 149 / 129 / 208 iterations at 6.4 / 3.2 / 1.6 m with `stretch_damping`, 196 / 178 / 291
+    /// without, the model 221 each;
+    /// docs/theory/fem.md#mesh-sequencing).
     pub fn static_seconds(&self) -> f64 {
         if !self.statics {
             return 0.0;
@@ -113,9 +114,7 @@ impl Workload {
         };
         let n = self.mesh_sequence;
         (0..=n)
-            .map(|k| {
-                level((k + 1).min(n)).static_iterations() * level(k).static_iteration_seconds()
-            })
+            .map(|k| level(n).static_iterations() * level(k).static_iteration_seconds())
             .sum()
     }
 
