@@ -508,8 +508,9 @@ fn seabed_contact_warning(
              lift-offs on the seabed (e.g. {node}) excite its contact at ω_c = {:.0} rad/s, \
              which {scheme} does not resolve at dt = {} s (ω_c·dt = {:.2}: it removes that \
              share of a contact oscillation per contact period; \
-             docs/theory/fem.md#seabed-contact-resolution); dt ≤ {:.2e} s or \
-             `scheme = \"midpoint\"` with θ = ½ resolves it",
+             docs/theory/fem.md#seabed-contact-resolution); dt ≤ {:.2e} s resolves it, \
+             and `scheme = \"midpoint\"` with θ = ½ does not damp it (its time-step \
+             check then judges the step)",
             100.0 * c.loss,
             c.impacts,
             c.omega,
