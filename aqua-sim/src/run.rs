@@ -541,10 +541,10 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
         "fem/snap",
         "dynamics",
         format!(
-            "the largest tension of this run ({:.0} N over every step) and the line-end loads \
-             of the snapping line are too low: {} times a slack element snapped taut within a \
-             single step, the largest element {}{group} at t = {:.3} s, closing at {:.3} m/s, \
-             a snap that peaks near {:.0} N (+{:.0} %) within {:.1e} s, inside one step of {} s \
+            "the largest tension of this run ({:.0} N over every step) is too low, and so may \
+             be the end loads of the line that snapped: {} times a slack element snapped taut \
+             within a single step; the largest, element {}{group} at t = {:.3} s, closing at \
+             {:.3} m/s, peaks near {:.0} N (+{:.0} %) within {:.1e} s, inside one step of {} s \
              (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s resolves such snaps",
             s.computed,
             s.snaps,
