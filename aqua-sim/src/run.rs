@@ -313,6 +313,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = extremes_warning(record, &prep.built.group_names) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = snap_warning(record, model) {
+                    obs.diagnostic(&d);
+                }
                 r
             }
             Err(e) => Err(e),
@@ -517,6 +520,42 @@ fn seabed_contact_warning(
             c.dt,
             c.omega * c.dt,
             c.resolving_dt,
+        ),
+    ))
+}
+
+/// A warning when a slack element snapped taut within a single step that does not resolve the
+/// snap, and the snap's estimated tension lies above the largest tension the run computed:
+/// [`aqua_fem::SnapResolution::excess`] above [`aqua_fem::SNAP_EXCESS_WARNING`]
+/// (docs/theory/fem.md#snap-resolution). It names the element group that snapped.
+fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
+    let s = record.step_control.as_ref()?.snaps?;
+    if s.excess <= aqua_fem::SNAP_EXCESS_WARNING {
+        return None;
+    }
+    let group = model
+        .groups()
+        .get(s.group)
+        .map_or_else(String::new, |g| format!(" of `{}`", g.name));
+    Some(Diagnostic::warning(
+        "fem/snap",
+        "dynamics",
+        format!(
+            "the largest tension of this run ({:.0} N over every step) is too low, and so may \
+             be the end loads of the line that snapped: {} times a slack element snapped taut \
+             within a single step; the largest, element {}{group} at t = {:.3} s, closing at \
+             {:.3} m/s, peaks near {:.0} N (+{:.0} %) within {:.1e} s, inside one step of {} s \
+             (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s resolves such snaps",
+            s.computed,
+            s.snaps,
+            s.element,
+            s.t,
+            s.speed,
+            s.estimate,
+            100.0 * s.excess,
+            s.resolving_dt / aqua_fem::RESOLVED_PHASE * std::f64::consts::PI,
+            s.dt,
+            s.resolving_dt,
         ),
     ))
 }

@@ -15,7 +15,7 @@
 //! checked only where the crest could set the group's extreme (p(s*) ≥ (1 − tol)·T_g,max). A
 //! snap that starts slack (T = Ṫ = 0) and passes its crest within the step is caught the same
 //! way; one that starts and ends slack within a single step leaves no trace at the step's ends
-//! and is not. Groups whose largest tension is below `MIN_SHARE` of the structure's largest
+//! and is not (the snap check of `snap_resolution.rs` sees it at the step's middle and warns). Groups whose largest tension is below `MIN_SHARE` of the structure's largest
 //! are not controlled. A step that cannot be halved again without falling below `dt_min` is
 //! accepted and counted as unresolved, so the run goes on and says so.
 

@@ -13,6 +13,7 @@ mod midpoint;
 mod newton;
 mod scheme;
 mod settings;
+mod snap_resolution;
 mod snapshot;
 mod step_control;
 
@@ -22,6 +23,7 @@ pub use extreme_control::ExtremeResolution;
 pub(crate) use hht::{HhtForces, use_hht_force};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
+pub use snap_resolution::{RESOLVED_PHASE, SNAP_EXCESS_WARNING, SnapResolution};
 pub use snapshot::Snapshot;
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
 
@@ -132,6 +134,9 @@ pub struct DynamicSolver<'m> {
     /// The seabed contact's landings and lift-offs (None without a seabed the nodes can touch;
     /// docs/theory/fem.md#seabed-contact-resolution).
     contact: Option<contact_resolution::ContactTracker>,
+    /// The slack elements' snaps within single steps (None without cable elements;
+    /// docs/theory/fem.md#snap-resolution).
+    snaps: Option<snap_resolution::SnapTracker>,
 }
 
 impl<'m> DynamicSolver<'m> {
@@ -245,6 +250,7 @@ impl<'m> DynamicSolver<'m> {
                 .extreme_tolerance
                 .map(|tol| extreme_control::ExtremeControl::new(model, tol)),
             contact,
+            snaps: snap_resolution::SnapTracker::new(model),
         };
         // Initial acceleration on free DOFs: M_ff·a_f = −q_f − (M·a_c)_f.
         for &gd in &s.sys.dof_of_free {
@@ -276,6 +282,9 @@ impl<'m> DynamicSolver<'m> {
         s.accept_bookkeeping(0.0, true);
         if let Some(c) = s.extremes.as_mut() {
             c.accept(model, &s.outputs.tension, &s.state.x, &s.state.v);
+        }
+        if let Some(snaps) = s.snaps.as_mut() {
+            snaps.observe(&s.outputs.tension);
         }
         s.e0 = s.energies.kinetic + s.energies.strain;
         s.x_start = s.state.x.clone();

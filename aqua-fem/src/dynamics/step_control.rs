@@ -73,6 +73,10 @@ pub struct StepControl {
     /// seabed the nodes can touch (docs/theory/fem.md#seabed-contact-resolution).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seabed_contact: Option<super::ContactResolution>,
+    /// The worst snap of a slack element within a single step that the step does not resolve
+    /// (docs/theory/fem.md#snap-resolution).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snaps: Option<super::SnapResolution>,
 }
 
 impl StepControl {
@@ -249,6 +253,17 @@ impl DynamicSolver<'_> {
                             out,
                         );
                     }
+                    // Snaps of slack elements (docs/theory/fem.md#snap-resolution).
+                    if let Some(snaps) = self.snaps.as_mut() {
+                        snaps.step(
+                            self.model,
+                            &self.sys.added,
+                            (&self.state.x, &self.state.v, &self.state.a),
+                            (&self.x1, &self.v1),
+                            t,
+                            h,
+                        );
+                    }
                     self.clamp = false;
                     self.total_iterations += iters;
                     self.n_steps += 1;
@@ -259,6 +274,10 @@ impl DynamicSolver<'_> {
                     self.scheme.accept(self.model, &self.state.x, self.state.t);
                     // x1 now holds x_n (for the work increments).
                     self.accept_bookkeeping(h, false);
+                    if let Some(snaps) = self.snaps.as_mut() {
+                        snaps.observe(&self.outputs.tension);
+                        self.control.snaps = snaps.resolution();
+                    }
                     if let Some(c) = self.extremes.as_mut() {
                         c.accept(
                             self.model,

@@ -1,0 +1,278 @@
+//! Whether the time step resolves the snaps of slack cable elements
+//! (docs/theory/fem.md#snap-resolution): an element that goes from slack to taut within one
+//! step — or is slack at both of the step's ends but taut at its middle — snapped inside the
+//! step. Its two nodes meet the element's stiffness k = EA/L0 at the closing speed v_c, which
+//! they turn round in half an oscillation of their reduced mass m_r on k, π/ω with
+//! ω = √(k/m_r), at a peak tension of about T* = v_c·√(k·m_r). A step longer than
+//! `RESOLVED_PHASE`/ω misses that crest by more than 1 %; when such a snap's T* exceeds the
+//! largest tension the run computed, the run's largest tension is not resolved by the step.
+
+use crate::model::Model;
+use crate::system::sub;
+use serde::{Deserialize, Serialize};
+
+/// The phase ω·Δt of the snap oscillation per step up to which a step samples its crest within
+/// 1 % (a crest sampled at phase steps φ is low by at most 1 − cos(φ/2) ≈ φ²/8; φ = √0.08).
+pub const RESOLVED_PHASE: f64 = 0.282_842_712_474_619;
+
+/// Estimated snap tension above the run's largest computed tension, as a share of the latter,
+/// from which a run warns that its largest tension is not resolved (1 %).
+pub const SNAP_EXCESS_WARNING: f64 = 0.01;
+
+/// The largest unresolved snap of a run (reported in run.json under `step_control.snaps`;
+/// docs/theory/fem.md#snap-resolution).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct SnapResolution {
+    /// Unresolved snaps: elements that went taut within single steps longer than
+    /// `RESOLVED_PHASE`/ω.
+    pub snaps: usize,
+    /// The group of the snap with the largest estimated tension.
+    pub group: usize,
+    /// Its element.
+    pub element: usize,
+    /// The time the step started from [s].
+    pub t: f64,
+    /// Its step Δt [s].
+    pub dt: f64,
+    /// The closing speed v_c of the element's ends [m/s].
+    pub speed: f64,
+    /// The estimated snap tension T* = v_c·√(k·m_r) [N].
+    pub estimate: f64,
+    /// The largest element tension over the accepted steps [N].
+    pub computed: f64,
+    /// (T* − computed)/computed: how far above the computed extreme the snap reaches.
+    pub excess: f64,
+    /// The largest step that samples this snap's crest within 1 %, `RESOLVED_PHASE`/ω [s].
+    pub resolving_dt: f64,
+}
+
+/// A step's start: positions [m], velocities [m/s] and accelerations [m/s²] of the nodes.
+type Start<'a> = (&'a [[f64; 3]], &'a [[f64; 3]], &'a [[f64; 3]]);
+
+/// The largest unresolved snap so far and the largest computed tension.
+#[derive(Debug, Clone)]
+pub(crate) struct SnapTracker {
+    /// Largest element tension over the accepted states [N].
+    computed: f64,
+    /// The largest unresolved snap (estimate 0 before any).
+    worst: SnapResolution,
+}
+
+impl SnapTracker {
+    /// The tracker of `model`'s cable elements (None without any).
+    pub(crate) fn new(model: &Model) -> Option<Self> {
+        (!model.elements().is_empty()).then(|| Self {
+            computed: 0.0,
+            worst: SnapResolution::default(),
+        })
+    }
+
+    /// Records an accepted state's element tensions [N].
+    pub(crate) fn observe(&mut self, tension: &[f64]) {
+        self.computed = tension.iter().fold(self.computed, |m, &t| m.max(t));
+    }
+
+    /// Records the snaps of an accepted step of length h [s] from (x_n, v_n) at time t [s] to
+    /// (x1, v1); `added` is the nodes' added-mass blocks [kg].
+    pub(crate) fn step(
+        &mut self,
+        model: &Model,
+        added: &[[[f64; 3]; 3]],
+        (xn, vn, an): Start<'_>,
+        (x1, v1): (&[[f64; 3]], &[[f64; 3]]),
+        t: f64,
+        h: f64,
+    ) {
+        for (i, el) in model.elements().iter().enumerate() {
+            let Some((speed, mr)) = snap(model, el, added, (xn, vn, an), (x1, v1), h) else {
+                continue;
+            };
+            let k = el.ea / el.l0;
+            let omega = (k / mr).sqrt();
+            if omega * h <= RESOLVED_PHASE {
+                continue;
+            }
+            self.worst.snaps += 1;
+            let estimate = speed * (k * mr).sqrt();
+            if estimate > self.worst.estimate {
+                self.worst = SnapResolution {
+                    snaps: self.worst.snaps,
+                    group: el.group,
+                    element: i,
+                    t,
+                    dt: h,
+                    speed,
+                    estimate,
+                    resolving_dt: RESOLVED_PHASE / omega,
+                    ..SnapResolution::default()
+                };
+            }
+        }
+    }
+
+    /// The run's largest unresolved snap so far, against the largest tension computed so far
+    /// (None before any unresolved snap).
+    pub(crate) fn resolution(&self) -> Option<SnapResolution> {
+        (self.worst.estimate > 0.0).then(|| SnapResolution {
+            computed: self.computed,
+            excess: if self.computed > 0.0 {
+                (self.worst.estimate - self.computed) / self.computed
+            } else {
+                f64::MAX
+            },
+            ..self.worst
+        })
+    }
+}
+
+/// Whether element `el` snapped taut within the step from (x_n, v_n) to (x1, v1) of length
+/// h [s]: slack at the start and taut at the end, or slack at both ends but taut at the middle
+/// of the nodes' cubic Hermite path, x(h/2) = (x_n + x1)/2 + h/8·(v_n − v1). Then its closing
+/// speed v_c [m/s] — the speed at which the start's slack closes under the start's stretch
+/// acceleration, or the mean rate over the step if larger (slack to taut), or the reopening
+/// rate at the end if larger (taut inside the step only) — and the reduced mass m_r [kg] of its
+/// nodes along it (structural plus added; a held node's partner alone).
+fn snap(
+    model: &Model,
+    el: &crate::model::Cable,
+    added: &[[[f64; 3]; 3]],
+    (xn, vn, an): Start<'_>,
+    (x1, v1): (&[[f64; 3]], &[[f64; 3]]),
+    h: f64,
+) -> Option<(f64, f64)> {
+    if el.l0 <= 0.0 || el.ea <= 0.0 {
+        return None;
+    }
+    // Stretch l − L0 and its rate at the step's ends.
+    let stretch = |x: &[[f64; 3]], v: &[[f64; 3]]| {
+        let d = sub(x[el.b], x[el.a]);
+        let l = norm(d);
+        let rate = if l > 0.0 {
+            dot(d, sub(v[el.b], v[el.a])) / l
+        } else {
+            0.0
+        };
+        (l - el.l0, rate)
+    };
+    let (s0, r0) = stretch(xn, vn);
+    if s0 >= 0.0 {
+        return None;
+    }
+    // The speed at which the slack s0 closes under the start's stretch acceleration
+    // s̈ = (d·Δa + |Δv|² − ṡ²)/l held constant: √(ṡ0² + 2·s̈0·|s0|).
+    let d = sub(xn[el.b], xn[el.a]);
+    let dv = sub(vn[el.b], vn[el.a]);
+    let l = norm(d);
+    let accel = if l > 0.0 {
+        (dot(d, sub(an[el.b], an[el.a])) + dot(dv, dv) - r0 * r0) / l
+    } else {
+        0.0
+    };
+    let closing = (r0 * r0 + 2.0 * accel * (-s0)).max(0.0).sqrt();
+    let (s1, r1) = stretch(x1, v1);
+    let speed = if s1 > 0.0 {
+        // Slack to taut: it closed during the step at least at the mean rate.
+        closing.max((s1 - s0) / h)
+    } else {
+        let mid = |n: usize| {
+            [0, 1, 2].map(|k| 0.5 * (xn[n][k] + x1[n][k]) + 0.125 * h * (vn[n][k] - v1[n][k]))
+        };
+        if norm(sub(mid(el.b), mid(el.a))) <= el.l0 {
+            return None;
+        }
+        // Taut inside the step only: as fast as it closed or reopened.
+        closing.max(-r1)
+    };
+    if !(speed > 0.0) {
+        return None;
+    }
+    let d = sub(x1[el.b], x1[el.a]);
+    let l = norm(d);
+    if l <= 0.0 {
+        return None;
+    }
+    let u = [d[0] / l, d[1] / l, d[2] / l];
+    let along = |n: usize| {
+        let a: f64 = added.get(n).map_or(0.0, |m| {
+            (0..3)
+                .map(|p| (0..3).map(|q| u[p] * m[p][q] * u[q]).sum::<f64>())
+                .sum()
+        });
+        model.lumped_mass[n] + a
+    };
+    let (ma, mb) = (along(el.a), along(el.b));
+    let mr = match (held(model, el.a), held(model, el.b)) {
+        (true, true) => return None,
+        (true, false) => mb,
+        (false, true) => ma,
+        (false, false) => ma * mb / (ma + mb),
+    };
+    (mr > 0.0).then_some((speed, mr))
+}
+
+/// Whether all three coordinates of node `n` are held.
+fn held(model: &Model, n: usize) -> bool {
+    (0..3).all(|k| model.is_constrained(n, k))
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{CableSection, Dofs, Environment, ModelBuilder, UnstretchedLength};
+
+    /// A rope of L0 = 1 m from a held node to a free 10 kg node at 0.9 m (slack).
+    fn model() -> Model {
+        let mut b = ModelBuilder::new(Environment::default());
+        let g = b.add_group("rope", CableSection::new(1e5, 1e-6)).unwrap();
+        let a = b.add_node([0.0; 3]).unwrap();
+        let n = b.add_node([0.9, 0.0, 0.0]).unwrap();
+        b.add_cable(a, n, g, UnstretchedLength::Given(1.0)).unwrap();
+        b.add_point_body(crate::PointBody {
+            node: n,
+            mass: 10.0,
+            force: [0.0; 3],
+            seabed_stiffness: 0.0,
+        })
+        .unwrap();
+        b.fix(a, Dofs::ALL).unwrap();
+        b.build().unwrap()
+    }
+
+    #[test]
+    fn a_snap_between_two_slack_ends_is_seen_at_the_middle_of_the_step() {
+        let m = model();
+        let el = m.elements()[0];
+        let x = [[0.0; 3], [0.9, 0.0, 0.0]];
+        let z = [[0.0; 3]; 2];
+        let h = 0.1;
+        // Out at 6 m/s, back at 6 m/s: slack at both ends, but the cubic path's middle is at
+        // 0.9 + h/8·12 = 1.05 m > L0.
+        let (vn, v1) = ([[0.0; 3], [6.0, 0.0, 0.0]], [[0.0; 3], [-6.0, 0.0, 0.0]]);
+        let (speed, mr) = snap(&m, &el, &[], (&x, &vn, &z), (&x, &v1), h).expect("a snap");
+        assert_eq!(speed, 6.0);
+        // The held node does not move: the free node's mass (10 kg point + a negligible rope).
+        assert!((mr - 10.0).abs() < 1e-5, "{mr}");
+        // At 3 m/s the middle is at 1.0 − 0.025 m: no snap.
+        let (vn, v1) = ([[0.0; 3], [3.0, 0.0, 0.0]], [[0.0; 3], [-3.0, 0.0, 0.0]]);
+        assert!(snap(&m, &el, &[], (&x, &vn, &z), (&x, &v1), h).is_none());
+        // Slack to taut: the larger of the closing speed and the mean rate.
+        let x1 = [[0.0; 3], [1.01, 0.0, 0.0]];
+        let (vn, v1) = ([[0.0; 3], [0.5, 0.0, 0.0]], [[0.0; 3], [0.0; 3]]);
+        let (speed, _) = snap(&m, &el, &[], (&x, &vn, &z), (&x1, &v1), h).expect("a snap");
+        assert!((speed - 1.1).abs() < 1e-12, "{speed}");
+        // Accelerated at 10 m/s² over the 0.1 m of slack: √(0.5² + 2·10·0.1) = 1.5 m/s.
+        let an = [[0.0; 3], [10.0, 0.0, 0.0]];
+        let (speed, _) = snap(&m, &el, &[], (&x, &vn, &an), (&x1, &v1), h).expect("a snap");
+        assert!((speed - 1.5).abs() < 1e-12, "{speed}");
+        // Taut at the start: not a snap of this step.
+        assert!(snap(&m, &el, &[], (&x1, &vn, &z), (&x1, &v1), h).is_none());
+    }
+}
