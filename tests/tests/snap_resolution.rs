@@ -6,30 +6,7 @@
 
 mod common;
 
-use common::{example, run_json, scratch};
-use std::path::Path;
-
-/// examples/mooring-chain.toml at 40 segments, 30 s, samples every second.
-fn chain() -> String {
-    example("mooring-chain.toml")
-        .replace("segments = 80", "segments = 40")
-        .replace("t_end = 60.0", "t_end = 30.0")
-        .replace("output_interval = 0.5", "output_interval = 1.0")
-}
-
-/// Runs the chain with `set` and returns its run.json.
-fn run(dir: &Path, name: &str, set: &[&str]) -> serde_json::Value {
-    let scene = dir.join(format!("{name}.toml"));
-    std::fs::write(&scene, chain()).unwrap();
-    let out = dir.join(format!("{name}-out"));
-    let mut set: Vec<_> = set
-        .iter()
-        .map(|s| s.parse::<aqua_sim::Override>().unwrap())
-        .collect();
-    set.push("analysis.dynamic.paraview_interval=30".parse().unwrap());
-    aqua_cli::commands::run::run_scene(&scene, &set, &out, true).unwrap();
-    run_json(&out)
-}
+use common::{run_matrix_chain as run, scratch};
 
 fn snap_warning(json: &serde_json::Value) -> Option<String> {
     json["diagnostics"]

@@ -13,7 +13,7 @@
 
 mod common;
 
-use common::{example, scratch, summary};
+use common::{example, matrix_chain as chain, scratch, summary};
 use std::path::Path;
 
 /// What a run gave: the largest tension over the output samples after t = 0 [N], the extremes
@@ -235,14 +235,6 @@ fn check_within(name: &str, c: &Cell<'_>, reference: f64, may_warn: bool, bound:
         "{cell}: a false alarm {:?}",
         o.diagnostics
     );
-}
-
-/// examples/mooring-chain.toml at 40 segments, 30 s, samples every second.
-fn chain() -> String {
-    example("mooring-chain.toml")
-        .replace("segments = 80", "segments = 40")
-        .replace("t_end = 60.0", "t_end = 30.0")
-        .replace("output_interval = 0.5", "output_interval = 1.0")
 }
 
 #[test]

@@ -59,6 +59,30 @@ pub fn example(name: &str) -> String {
     std::fs::read_to_string(root().join("examples").join(name)).unwrap()
 }
 
+/// The stability matrix's chain: examples/mooring-chain.toml at 40 segments, 30 s, samples
+/// every second.
+pub fn matrix_chain() -> String {
+    example("mooring-chain.toml")
+        .replace("segments = 80", "segments = 40")
+        .replace("t_end = 60.0", "t_end = 30.0")
+        .replace("output_interval = 0.5", "output_interval = 1.0")
+}
+
+/// Runs [`matrix_chain`] in `dir` with the scene changes `set` (and a ParaView step every
+/// 30 s) and returns its run.json.
+pub fn run_matrix_chain(dir: &Path, name: &str, set: &[&str]) -> serde_json::Value {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, matrix_chain()).unwrap();
+    let out = dir.join(format!("{name}-out"));
+    let mut set: Vec<_> = set
+        .iter()
+        .map(|s| s.parse::<aqua_sim::Override>().unwrap())
+        .collect();
+    set.push("analysis.dynamic.paraview_interval=30".parse().unwrap());
+    aqua_cli::commands::run::run_scene(&scene, &set, &out, true).unwrap();
+    run_json(&out)
+}
+
 /// Reads and builds the scene file at `path` and solves its statics to the end; returns the
 /// prepared scene, its water loads (at the equilibrium) and the static solution.
 pub fn static_solve(
