@@ -1,6 +1,10 @@
 //! Symmetric factorisation of a nearly symmetric tangent with iterative refinement on the
 //! non-symmetric remainder (docs/theory/fem.md#sparse-linear-algebra).
 //!
+//! S⁻¹ is applied by one L·D·Lᵀ of the whole, or, for a partitioned model (the cages of a
+//! farm), by the [block solve](crate::system::schur) with an L·D·Lᵀ per part, the parts
+//! factorised in parallel (docs/theory/fem.md#block-solve).
+//!
 //! The dynamic tangent J = m·M + c·C + k·K is symmetric except for the water loads'
 //! velocity and position derivatives. Writing J = S + A with S = ½(J + Jᵀ) and A = ½(J − Jᵀ),
 //! S is factorised as L·D·Lᵀ (AMD ordering, simplicial or supernodal by the fill of the
@@ -23,6 +27,7 @@
 //! (`System`) keeps a factor across Newton iterations and steps until it grows too stale.
 
 use crate::error::{FemError, Result};
+use crate::system::schur::{PartFactor, SchurSolver};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::SupernodalThreshold;
@@ -71,9 +76,8 @@ pub(crate) struct SymmetricSolver {
     /// For each upper entry (r, c): positions of (r, c) and (c, r) in the full values.
     pairs: Vec<(usize, usize)>,
     up_values: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
-    l_values: Vec<f64>,
-    mem: MemBuffer,
+    /// How S⁻¹ is applied.
+    factor: SymmetricFactor,
     /// The full matrix at the last factorisation (refinement residuals use it).
     pub(crate) factored: Vec<f64>,
     b: Vec<f64>,
@@ -98,6 +102,46 @@ impl std::fmt::Debug for SymmetricSolver {
     }
 }
 
+/// The factor of S: one L·D·Lᵀ of the whole, or the block solve of a partition with an
+/// L·D·Lᵀ per part.
+enum SymmetricFactor {
+    Whole {
+        symbolic: Box<SymbolicCholesky<usize>>,
+        l_values: Vec<f64>,
+        mem: MemBuffer,
+    },
+    Blocks {
+        schur: Box<SchurSolver>,
+        /// S in the full pattern (both triangles), the block solve's input.
+        full: Vec<f64>,
+    },
+}
+
+/// The symbolic L·D·Lᵀ analysis (AMD ordering) of the n × n upper-triangle pattern
+/// `col_ptr`/`row_idx`: simplicial for thin factors (lines, grids of lines), supernodal for
+/// nets, decided by the fill nnz(L)/n of the simplicial factor, so the choice (and every
+/// result bit) depends on the model alone (docs/theory/fem.md#sparse-linear-algebra).
+pub(crate) fn analyse_ldlt(
+    n: usize,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+) -> Result<SymbolicCholesky<usize>> {
+    let sym = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+    let analyse = |threshold| {
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: threshold,
+            ..Default::default()
+        };
+        factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, params)
+            .map_err(|e| FemError::Linear(format!("symbolic LDLt: {e:?}")))
+    };
+    let symbolic = analyse(SupernodalThreshold::FORCE_SIMPLICIAL)?;
+    if symbolic.len_val() as f64 > SIMPLICIAL_MAX_FILL * n as f64 {
+        return analyse(SupernodalThreshold::FORCE_SUPERNODAL);
+    }
+    Ok(symbolic)
+}
+
 /// Why the symmetric path could not give the solution; the caller then uses the LU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum SymmetricFallback {
@@ -110,9 +154,15 @@ pub(crate) enum SymmetricFallback {
 }
 
 impl SymmetricSolver {
-    /// Symbolic analysis of the symmetric part of the pattern `col_ptr`/`row_idx` (n × n);
+    /// Symbolic analysis of the symmetric part of the pattern `col_ptr`/`row_idx` (n × n),
+    /// by blocks where `part_of` (a part per DOF) gives a partition the block solve takes;
     /// `None` if the pattern is not structurally symmetric.
-    pub(crate) fn new(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Result<Option<Self>> {
+    pub(crate) fn new(
+        n: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        part_of: Option<&[usize]>,
+    ) -> Result<Option<Self>> {
         let pos = |r: usize, c: usize| -> Option<usize> {
             let s = &row_idx[col_ptr[c]..col_ptr[c + 1]];
             s.binary_search(&r).ok().map(|k| col_ptr[c] + k)
@@ -134,37 +184,37 @@ impl SymmetricSolver {
             }
             up_col_ptr.push(up_row_idx.len());
         }
-        let sym = SymbolicSparseColMatRef::new_checked(n, n, &up_col_ptr, None, &up_row_idx);
-        let analyse = |threshold| {
-            let params = CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: threshold,
-                ..Default::default()
-            };
-            factorize_symbolic_cholesky(sym, Side::Upper, SymmetricOrdering::Amd, params)
-                .map_err(|e| FemError::Linear(format!("symbolic LDLt: {e:?}")))
+        let blocks = match part_of {
+            Some(parts) => SchurSolver::new(col_ptr, row_idx, parts, PartFactor::Ldlt)?,
+            None => None,
         };
-        // Simplicial for thin factors (lines, grids of lines), supernodal for nets: decided
-        // by the fill nnz(L)/n of the simplicial factor, so the choice (and every result bit)
-        // depends on the model alone (docs/theory/fem.md#sparse-linear-algebra).
-        let mut symbolic = analyse(SupernodalThreshold::FORCE_SIMPLICIAL)?;
-        if symbolic.len_val() as f64 > SIMPLICIAL_MAX_FILL * n as f64 {
-            symbolic = analyse(SupernodalThreshold::FORCE_SUPERNODAL)?;
-        }
-        let req = symbolic
-            .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-        let mem = MemBuffer::try_new(req)
-            .map_err(|_| FemError::Linear("out of memory for LDLt workspace".into()))?;
+        let factor = match blocks {
+            Some(schur) => SymmetricFactor::Blocks {
+                schur: Box::new(schur),
+                full: vec![0.0; col_ptr[n]],
+            },
+            None => {
+                let symbolic = analyse_ldlt(n, &up_col_ptr, &up_row_idx)?;
+                let req = symbolic
+                    .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default())
+                    .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+                let mem = MemBuffer::try_new(req)
+                    .map_err(|_| FemError::Linear("out of memory for LDLt workspace".into()))?;
+                SymmetricFactor::Whole {
+                    l_values: vec![0.0; symbolic.len_val()],
+                    symbolic: Box::new(symbolic),
+                    mem,
+                }
+            }
+        };
         let nnz_up = up_row_idx.len();
         Ok(Some(Self {
             n,
-            l_values: vec![0.0; symbolic.len_val()],
-            symbolic,
+            factor,
             up_col_ptr,
             up_row_idx,
             pairs,
             up_values: vec![0.0; nnz_up],
-            mem,
             factored: vec![0.0; col_ptr[n]],
             b: vec![0.0; n],
             y: vec![0.0; n],
@@ -191,26 +241,51 @@ impl SymmetricSolver {
             *u = 0.5 * (self.factored[p] + self.factored[q]);
         }
         self.fresh = true;
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.n,
-            self.n,
-            &self.up_col_ptr,
-            None,
-            &self.up_row_idx,
-        );
-        let mat = SparseColMatRef::new(sym, &self.up_values);
-        self.symbolic
-            .factorize_numeric_ldlt(
-                &mut self.l_values,
-                mat,
-                Side::Upper,
-                LdltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut self.mem),
-                Default::default(),
-            )
-            .map(|_| ())
-            .map_err(|_| SymmetricFallback::ZeroPivot)
+        match &mut self.factor {
+            SymmetricFactor::Whole {
+                symbolic,
+                l_values,
+                mem,
+            } => {
+                let sym = SymbolicSparseColMatRef::new_checked(
+                    self.n,
+                    self.n,
+                    &self.up_col_ptr,
+                    None,
+                    &self.up_row_idx,
+                );
+                let mat = SparseColMatRef::new(sym, &self.up_values);
+                symbolic
+                    .factorize_numeric_ldlt(
+                        l_values,
+                        mat,
+                        Side::Upper,
+                        LdltRegularization::default(),
+                        Par::Seq,
+                        MemStack::new(mem),
+                        Default::default(),
+                    )
+                    .map(|_| ())
+                    .map_err(|_| SymmetricFallback::ZeroPivot)
+            }
+            SymmetricFactor::Blocks { schur, full } => {
+                for (&u, &(p, q)) in self.up_values.iter().zip(&self.pairs) {
+                    full[p] = u;
+                    full[q] = u;
+                }
+                schur
+                    .factorize(full)
+                    .map_err(|_| SymmetricFallback::ZeroPivot)
+            }
+        }
+    }
+
+    /// The parts and interface DOFs of the block solve, if S⁻¹ is applied by blocks.
+    pub(crate) fn block_shape(&self) -> Option<(usize, usize)> {
+        match &self.factor {
+            SymmetricFactor::Blocks { schur, .. } => Some(schur.shape()),
+            SymmetricFactor::Whole { .. } => None,
+        }
     }
 
     /// Takes J's current `values` for the refinement and keeps the factor of an earlier
@@ -226,9 +301,18 @@ impl SymmetricSolver {
     }
 
     fn solve_s(&mut self, rhs: &mut [f64]) {
-        let ldlt = LdltRef::new(&self.symbolic, &self.l_values);
-        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
-        ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.mem));
+        match &mut self.factor {
+            SymmetricFactor::Whole {
+                symbolic,
+                l_values,
+                mem,
+            } => {
+                let ldlt = LdltRef::new(symbolic, l_values);
+                let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
+                ldlt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(mem));
+            }
+            SymmetricFactor::Blocks { schur, .. } => schur.solve(rhs),
+        }
     }
 
     /// Solves J·y = rhs in place (J as at the last `factorize`, in the CSC pattern
@@ -526,8 +610,13 @@ mod tests {
     ) -> (std::result::Result<(), SymmetricFallback>, f64, usize, bool) {
         let n = a.nrows();
         let (cp, ri, v) = csc(a, |r, c| r.abs_diff(c) <= band);
-        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
-        let supernodal = matches!(s.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
+        let mut s = SymmetricSolver::new(n, &cp, &ri, None).unwrap().unwrap();
+        let supernodal = match &s.factor {
+            SymmetricFactor::Whole { symbolic, .. } => {
+                matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+            }
+            SymmetricFactor::Blocks { .. } => unreachable!("no partition given"),
+        };
         s.factorize(&v).unwrap();
         let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
         let mut y = b.clone();
@@ -547,7 +636,7 @@ mod tests {
         let a = tangent(60, 0.05);
         let n = a.nrows();
         let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
-        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        let mut s = SymmetricSolver::new(n, &cp, &ri, None).unwrap().unwrap();
         s.factorize(&v).unwrap();
         let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
         let exact = a
@@ -644,7 +733,7 @@ mod tests {
         a[(21, 20)] -= 8.0;
         let n = a.nrows();
         let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
-        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        let mut s = SymmetricSolver::new(n, &cp, &ri, None).unwrap().unwrap();
         s.factorize(&v).unwrap();
         let b: Vec<f64> = (0..n).map(|i| ((i * 13 % 7) as f64) - 3.0).collect();
         let mut y = b.clone();
@@ -670,7 +759,7 @@ mod tests {
         let a = tangent(60, 12.0);
         let n = a.nrows();
         let (cp, ri, v) = csc(&a, |r, c| r.abs_diff(c) <= 3);
-        let mut s = SymmetricSolver::new(n, &cp, &ri).unwrap().unwrap();
+        let mut s = SymmetricSolver::new(n, &cp, &ri, None).unwrap().unwrap();
         s.factorize(&v).unwrap();
         let b = vec![1.0; n];
         let mut y = b.clone();
@@ -683,6 +772,6 @@ mod tests {
     fn unsymmetric_pattern_is_refused() {
         let a = tangent(10, 0.0);
         let (cp, ri, _) = csc(&a, |r, c| r == c || r == c + 1);
-        assert!(SymmetricSolver::new(10, &cp, &ri).unwrap().is_none());
+        assert!(SymmetricSolver::new(10, &cp, &ri, None).unwrap().is_none());
     }
 }

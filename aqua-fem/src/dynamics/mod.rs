@@ -64,6 +64,11 @@ pub struct LinearSolverStats {
     /// Convergence checks solved with the last factor and its J, without forming a new J
     /// (simplified Newton corrections; docs/theory/fem.md#convergence-check).
     pub stale_checks: usize,
+    /// Parts of the block solve that applies the L·D·Lᵀ part by part, the cages of a farm
+    /// factorised in parallel (0: one L·D·Lᵀ of the whole; docs/theory/fem.md#block-solve).
+    pub block_parts: usize,
+    /// Interface DOFs of that block solve.
+    pub block_interface: usize,
 }
 
 /// Implicit time integrator (HHT-α or the midpoint rule); advance with [`step`](Self::step)
@@ -356,6 +361,12 @@ impl<'m> DynamicSolver<'m> {
     }
     /// What the linear solver did so far (docs/theory/fem.md#sparse-linear-algebra).
     pub fn linear_solver_stats(&self) -> LinearSolverStats {
+        let block = self
+            .sys
+            .sym
+            .as_ref()
+            .and_then(|s| s.block_shape())
+            .unwrap_or((0, 0));
         LinearSolverStats {
             factorisations: self.sys.n_factorisations,
             factor_reuses: self.sys.n_factor_reuses,
@@ -372,6 +383,8 @@ impl<'m> DynamicSolver<'m> {
             line_solves_reverted: self.lines.reverted,
             line_iterations: self.lines.local_iterations,
             stale_checks: self.stale_checks,
+            block_parts: block.0,
+            block_interface: block.1,
         }
     }
     /// What the step control did so far.

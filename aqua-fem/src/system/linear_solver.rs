@@ -2,6 +2,7 @@
 //! kept across iterations while it stays a good preconditioner, with the sparse LU (symbolic
 //! analysis once) as fallback and for statics (docs/theory/fem.md#sparse-linear-algebra).
 
+use super::schur::PartFactor;
 use super::{SchurSolver, System};
 use crate::error::{FemError, Result};
 use crate::symmetric::{RefineStop, SymmetricSolver};
@@ -51,8 +52,9 @@ impl System {
             } else {
                 if self.sym.is_none() {
                     // A failed symbolic analysis leaves the LU, which has its own errors.
-                    self.sym =
-                        SymmetricSolver::new(nf, &self.col_ptr, &self.row_idx).unwrap_or(None);
+                    let parts = self.part_of_free.as_deref();
+                    self.sym = SymmetricSolver::new(nf, &self.col_ptr, &self.row_idx, parts)
+                        .unwrap_or(None);
                     self.sym_unusable = self.sym.is_none();
                 }
                 if let Some(s) = self.sym.as_mut() {
@@ -161,7 +163,12 @@ impl System {
         if self.schur.is_none()
             && let Some(parts) = &self.part_of_free
         {
-            self.schur = Some(SchurSolver::new(&self.col_ptr, &self.row_idx, parts)?);
+            self.schur = Some(SchurSolver::new(
+                &self.col_ptr,
+                &self.row_idx,
+                parts,
+                PartFactor::Lu,
+            )?);
         }
         if let Some(Some(s)) = self.schur.as_mut() {
             s.factorize(values.unwrap_or(&self.values))?;

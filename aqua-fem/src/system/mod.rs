@@ -13,7 +13,7 @@ mod linear_solver;
 mod load_derivatives;
 mod net_triangles;
 mod rods;
-mod schur;
+pub(crate) mod schur;
 
 use crate::bending::HingeEval;
 use crate::cable::CableEval;

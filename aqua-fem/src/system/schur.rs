@@ -1,16 +1,20 @@
 //! Block solve of a partitioned Jacobian by the Schur complement of its interface: each
-//! part's interior is eliminated by its own sparse LU (symbolic analysis once, the parts
+//! part's interior is eliminated by its own sparse factor (symbolic analysis once, the parts
 //! factorised in parallel, each sequentially), the interface through the dense
 //! S = A_bb − Σ_p A_bp·A_pp⁻¹·A_pb summed in part order, so the bits do not depend on the
-//! number of threads (docs/theory/fem.md#block-solve).
+//! number of threads (docs/theory/fem.md#block-solve). The parts' factor is an LU, or for a
+//! symmetric matrix (the dynamic tangent's symmetric part) an L·D·Lᵀ of half the work.
 
 use crate::error::{FemError, Result};
+use crate::symmetric::analyse_ldlt;
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::lu::partial_pivoting::{factor as dense_lu, solve as dense_solve};
 use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{LdltRef, SymbolicCholesky};
 use faer::sparse::linalg::lu::{LuRef, NumericLu, SymbolicLu, factorize_symbolic_lu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Conj, Mat, MatMut, Par, Side};
 use rayon::prelude::*;
 
 const NONE: usize = usize::MAX;
@@ -22,7 +26,155 @@ const MAX_INTERFACE: usize = 3000;
 /// …and at most this fraction of the free DOFs.
 const MAX_INTERFACE_FRACTION: f64 = 0.25;
 
-/// One part: its interior block A_pp with its own LU, and its couplings to the interface.
+/// How the parts' interior blocks are factorised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PartFactor {
+    /// Sparse LU with partial pivoting (any matrix).
+    Lu,
+    /// Sparse L·D·Lᵀ of the upper triangle (the matrix must be symmetric).
+    Ldlt,
+}
+
+/// A part's factor of A_pp.
+enum Factor {
+    Lu {
+        symbolic: SymbolicLu<usize>,
+        numeric: NumericLu<usize, f64>,
+    },
+    Ldlt {
+        symbolic: SymbolicCholesky<usize>,
+        l_values: Vec<f64>,
+        /// The upper triangle of A_pp (CSC) and the position of each entry in the part's
+        /// `vals`.
+        up_col_ptr: Vec<usize>,
+        up_row_idx: Vec<usize>,
+        up_pos: Vec<usize>,
+        up_vals: Vec<f64>,
+    },
+}
+
+impl Factor {
+    /// The symbolic analysis of A_pp (n × n, CSC `col_ptr`/`row_idx`, rows sorted) and the
+    /// scratch its factorisation and a solve of `rhs_cols` columns need.
+    fn analyse(
+        kind: PartFactor,
+        n: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        rhs_cols: usize,
+    ) -> Result<(Self, faer::dyn_stack::StackReq)> {
+        match kind {
+            PartFactor::Lu => {
+                let sym = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+                let symbolic = factorize_symbolic_lu(sym, Default::default())
+                    .map_err(|e| FemError::Linear(format!("symbolic LU of a part: {e:?}")))?;
+                let req = symbolic
+                    .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+                    .or(symbolic.solve_in_place_scratch::<f64>(rhs_cols, Par::Seq));
+                let numeric = NumericLu::new();
+                Ok((Factor::Lu { symbolic, numeric }, req))
+            }
+            PartFactor::Ldlt => {
+                let (mut up_col_ptr, mut up_row_idx, mut up_pos) =
+                    (vec![0], Vec::new(), Vec::new());
+                for c in 0..n {
+                    for (k, &r) in row_idx[col_ptr[c]..col_ptr[c + 1]].iter().enumerate() {
+                        if r <= c {
+                            up_row_idx.push(r);
+                            up_pos.push(col_ptr[c] + k);
+                        }
+                    }
+                    up_col_ptr.push(up_row_idx.len());
+                }
+                let symbolic = analyse_ldlt(n, &up_col_ptr, &up_row_idx)?;
+                let req = symbolic
+                    .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default())
+                    .or(symbolic.solve_in_place_scratch::<f64>(rhs_cols, Par::Seq));
+                let f = Factor::Ldlt {
+                    l_values: vec![0.0; symbolic.len_val()],
+                    symbolic,
+                    up_vals: vec![0.0; up_pos.len()],
+                    up_col_ptr,
+                    up_row_idx,
+                    up_pos,
+                };
+                Ok((f, req))
+            }
+        }
+    }
+
+    /// Numeric factorisation of A_pp with values `vals` (its CSC `col_ptr`/`row_idx`).
+    fn factorize(
+        &mut self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        vals: &[f64],
+        mem: &mut MemBuffer,
+    ) -> Result<()> {
+        let n = col_ptr.len() - 1;
+        let singular = |e: &dyn std::fmt::Debug| {
+            FemError::Linear(format!("singular Jacobian ({e:?}); check supports"))
+        };
+        match self {
+            Factor::Lu { symbolic, numeric } => {
+                let sym = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+                symbolic
+                    .factorize_numeric_lu(
+                        numeric,
+                        SparseColMatRef::new(sym, vals),
+                        Par::Seq,
+                        MemStack::new(mem),
+                        Default::default(),
+                    )
+                    .map(|_| ())
+                    .map_err(|e| singular(&e))
+            }
+            Factor::Ldlt {
+                symbolic,
+                l_values,
+                up_col_ptr,
+                up_row_idx,
+                up_pos,
+                up_vals,
+            } => {
+                for (u, &p) in up_vals.iter_mut().zip(up_pos.iter()) {
+                    *u = vals[p];
+                }
+                let sym = SymbolicSparseColMatRef::new_checked(n, n, up_col_ptr, None, up_row_idx);
+                symbolic
+                    .factorize_numeric_ldlt(
+                        l_values,
+                        SparseColMatRef::new(sym, up_vals),
+                        Side::Upper,
+                        LdltRegularization::default(),
+                        Par::Seq,
+                        MemStack::new(mem),
+                        Default::default(),
+                    )
+                    .map(|_| ())
+                    .map_err(|e| singular(&e))
+            }
+        }
+    }
+
+    /// Solves A_pp·Y = B in place for the columns of `b`.
+    fn solve(&self, b: MatMut<'_, f64>, mem: &mut MemBuffer) {
+        match self {
+            Factor::Lu { symbolic, numeric } => LuRef::new_unchecked(symbolic, numeric)
+                .solve_in_place_with_conj(Conj::No, b, Par::Seq, MemStack::new(mem)),
+            Factor::Ldlt {
+                symbolic, l_values, ..
+            } => LdltRef::new(symbolic, l_values).solve_in_place_with_conj(
+                Conj::No,
+                b,
+                Par::Seq,
+                MemStack::new(mem),
+            ),
+        }
+    }
+}
+
+/// One part: its interior block A_pp with its own factor, and its couplings to the interface.
 struct Part {
     /// Free DOFs of the interior, ascending (local index = position).
     dofs: Vec<usize>,
@@ -31,8 +183,7 @@ struct Part {
     /// Position in the global `values` of each entry of A_pp.
     val_pos: Vec<usize>,
     vals: Vec<f64>,
-    symbolic: SymbolicLu<usize>,
-    numeric: NumericLu<usize, f64>,
+    factor: Factor,
     mem: MemBuffer,
     /// The interface DOFs this part couples to (indices into the interface list, ascending).
     iface: Vec<usize>,
@@ -53,7 +204,7 @@ struct Part {
 }
 
 /// The Schur-complement block solver of a partitioned sparse matrix.
-pub(super) struct SchurSolver {
+pub(crate) struct SchurSolver {
     n: usize,
     parts: Vec<Part>,
     /// The interface: free DOFs that couple to a DOF of another part, ascending.
@@ -80,13 +231,15 @@ impl std::fmt::Debug for SchurSolver {
 
 impl SchurSolver {
     /// The block solver of the n×n pattern (`col_ptr`, `row_idx`, rows sorted) under
-    /// `part_of` (a part number per DOF), or `None` where it does not pay: fewer than two
-    /// parts with interior DOFs, or an interface above `MAX_INTERFACE` or
+    /// `part_of` (a part number per DOF) with the parts' factor `kind` (`Ldlt` only for
+    /// symmetric values on a structurally symmetric pattern), or `None` where it does not
+    /// pay: fewer than two parts with interior DOFs, or an interface above `MAX_INTERFACE` or
     /// `MAX_INTERFACE_FRACTION` of the DOFs.
-    pub(super) fn new(
+    pub(crate) fn new(
         col_ptr: &[usize],
         row_idx: &[usize],
         part_of: &[usize],
+        kind: PartFactor,
     ) -> Result<Option<Self>> {
         let n = part_of.len();
         let mut is_iface = vec![false; n];
@@ -182,14 +335,9 @@ impl SchurSolver {
                     }
                 }
             }
-            let sym = SymbolicSparseColMatRef::new_checked(ni, ni, &pcol, None, &prow);
-            let symbolic = factorize_symbolic_lu(sym, Default::default())
-                .map_err(|e| FemError::Linear(format!("symbolic LU of part {p}: {e:?}")))?;
-            let req = symbolic
-                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-                .or(symbolic.solve_in_place_scratch::<f64>(pi.len().max(1), Par::Seq));
+            let (factor, req) = Factor::analyse(kind, ni, &pcol, &prow, pi.len().max(1))?;
             let mem = MemBuffer::try_new(req)
-                .map_err(|_| FemError::Linear("out of memory for a part's LU workspace".into()))?;
+                .map_err(|_| FemError::Linear("out of memory for a part's factor".into()))?;
             let kp = pi.len();
             let n_bp = a_bp.iter().map(Vec::len).sum();
             parts.push(Part {
@@ -198,8 +346,7 @@ impl SchurSolver {
                 col_ptr: pcol,
                 row_idx: prow,
                 val_pos: ppos,
-                symbolic,
-                numeric: NumericLu::new(),
+                factor,
                 mem,
                 x: vec![0.0; ni * kp],
                 c: vec![0.0; kp * kp],
@@ -230,12 +377,12 @@ impl SchurSolver {
     }
 
     /// Number of parts and of interface DOFs.
-    pub(super) fn shape(&self) -> (usize, usize) {
+    pub(crate) fn shape(&self) -> (usize, usize) {
         (self.parts.len(), self.iface.len())
     }
 
     /// Factorises the matrix of `values` (same pattern as at construction).
-    pub(super) fn factorize(&mut self, values: &[f64]) -> Result<()> {
+    pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<()> {
         let done: Vec<Result<()>> = self
             .parts
             .par_iter_mut()
@@ -274,7 +421,7 @@ impl SchurSolver {
     }
 
     /// Solves A·x = rhs in place with the last factorisation.
-    pub(super) fn solve(&mut self, rhs: &mut [f64]) {
+    pub(crate) fn solve(&mut self, rhs: &mut [f64]) {
         debug_assert_eq!(rhs.len(), self.n);
         let b: &[f64] = rhs;
         self.parts.par_iter_mut().for_each(|p| p.solve_interior(b));
@@ -315,22 +462,14 @@ impl SchurSolver {
 }
 
 impl Part {
-    /// LU of A_pp, X = A_pp⁻¹·A_pb and C = A_bp·X.
+    /// The factor of A_pp, X = A_pp⁻¹·A_pb and C = A_bp·X.
     fn factorize(&mut self, values: &[f64]) -> Result<()> {
         for (v, &pos) in self.vals.iter_mut().zip(&self.val_pos) {
             *v = values[pos];
         }
         let ni = self.dofs.len();
-        let sym = SymbolicSparseColMatRef::new_checked(ni, ni, &self.col_ptr, None, &self.row_idx);
-        self.symbolic
-            .factorize_numeric_lu(
-                &mut self.numeric,
-                SparseColMatRef::new(sym, &self.vals),
-                Par::Seq,
-                MemStack::new(&mut self.mem),
-                Default::default(),
-            )
-            .map_err(|e| FemError::Linear(format!("singular Jacobian ({e:?}); check supports")))?;
+        self.factor
+            .factorize(&self.col_ptr, &self.row_idx, &self.vals, &mut self.mem)?;
         let kp = self.iface.len();
         if kp == 0 {
             return Ok(());
@@ -341,12 +480,9 @@ impl Part {
                 self.x[r + j * ni] = values[pos];
             }
         }
-        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
-        lu.solve_in_place_with_conj(
-            Conj::No,
+        self.factor.solve(
             MatMut::from_column_major_slice_mut(&mut self.x, ni, kp),
-            Par::Seq,
-            MemStack::new(&mut self.mem),
+            &mut self.mem,
         );
         self.c.fill(0.0);
         let mut k = 0;
@@ -369,12 +505,9 @@ impl Part {
             *y = b[d];
         }
         let ni = self.dofs.len();
-        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
-        lu.solve_in_place_with_conj(
-            Conj::No,
+        self.factor.solve(
             MatMut::from_column_major_slice_mut(&mut self.y, ni, 1),
-            Par::Seq,
-            MemStack::new(&mut self.mem),
+            &mut self.mem,
         );
         self.g.fill(0.0);
         let mut k = 0;
@@ -465,10 +598,16 @@ mod tests {
         ] {
             a[i][j] = v;
         }
+        let (col_ptr, row_idx, vals) = csc(&a);
+        (col_ptr, row_idx, vals, a, part)
+    }
+
+    /// The CSC form (column pointers, sorted row indices, values) of the nonzeros of `a`.
+    fn csc(a: &[Vec<f64>]) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
         let mut col_ptr = vec![0];
         let mut row_idx = Vec::new();
         let mut vals = Vec::new();
-        for j in 0..n {
+        for j in 0..a.len() {
             for (i, row) in a.iter().enumerate() {
                 if row[j] != 0.0 {
                     row_idx.push(i);
@@ -477,13 +616,49 @@ mod tests {
             }
             col_ptr.push(row_idx.len());
         }
-        (col_ptr, row_idx, vals, a, part)
+        (col_ptr, row_idx, vals)
+    }
+
+    /// Each part's L·D·Lᵀ solves a symmetric matrix as the LU path and a dense elimination
+    /// do, including an indefinite one (negative pivots, as the dynamic tangent's slack
+    /// members and water loads can give); the symmetric part of the test matrix, with every
+    /// other diagonal entry negated.
+    #[test]
+    fn the_ldlt_block_solve_matches_a_dense_solve_of_a_symmetric_matrix() {
+        let (_, _, _, a, part) = partitioned();
+        let n = a.len();
+        let mut sym = vec![vec![0.0; n]; n];
+        for i in 0..n {
+            for j in 0..n {
+                sym[i][j] = 0.5 * (a[i][j] + a[j][i]);
+            }
+            if i % 2 == 1 {
+                sym[i][i] = -sym[i][i];
+            }
+        }
+        let (col_ptr, row_idx, vals) = csc(&sym);
+        let b: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos() - 0.2).collect();
+        let want = dense_solve(&sym, &b);
+        for kind in [PartFactor::Ldlt, PartFactor::Lu] {
+            let mut s = SchurSolver::new(&col_ptr, &row_idx, &part, kind)
+                .unwrap()
+                .expect("three parts with interiors");
+            s.factorize(&vals).unwrap();
+            let mut x = b.clone();
+            s.solve(&mut x);
+            for (i, (x, w)) in x.iter().zip(&want).enumerate() {
+                assert!(
+                    (x - w).abs() <= 1e-12 * (1.0 + w.abs()),
+                    "{kind:?}, DOF {i}: {x} against {w}"
+                );
+            }
+        }
     }
 
     #[test]
     fn the_block_solve_matches_a_dense_solve() {
         let (col_ptr, row_idx, vals, a, part) = partitioned();
-        let mut s = SchurSolver::new(&col_ptr, &row_idx, &part)
+        let mut s = SchurSolver::new(&col_ptr, &row_idx, &part, PartFactor::Lu)
             .unwrap()
             .expect("three parts with interiors");
         // Interface: every DOF with an entry in another part's row or column.
@@ -515,14 +690,14 @@ mod tests {
         let (col_ptr, row_idx, _, a, _) = partitioned();
         let one = vec![0; a.len()];
         assert!(
-            SchurSolver::new(&col_ptr, &row_idx, &one)
+            SchurSolver::new(&col_ptr, &row_idx, &one, PartFactor::Lu)
                 .unwrap()
                 .is_none()
         );
         // Every DOF its own part: all DOFs are interface.
         let each: Vec<usize> = (0..a.len()).collect();
         assert!(
-            SchurSolver::new(&col_ptr, &row_idx, &each)
+            SchurSolver::new(&col_ptr, &row_idx, &each, PartFactor::Lu)
                 .unwrap()
                 .is_none()
         );
