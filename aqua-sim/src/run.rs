@@ -85,6 +85,9 @@ pub struct RunRecord {
     pub extremes: Option<Extremes>,
     /// Step halvings and regrowths of the dynamic phase (HHT-α).
     pub step_control: Option<StepControl>,
+    /// The reaction of each `[[line]]`'s supported anchor after every accepted dynamic step
+    /// [N] (empty for a free anchor), for [`step_ripple_warning`].
+    pub anchor_reactions: Vec<Vec<f64>>,
     /// The energy ledger at the end of the dynamic phase (implicit schemes).
     pub energies: Option<Energies>,
     /// Counters of the dynamic phase's linear solves (implicit schemes).
@@ -95,6 +98,9 @@ impl RunRecord {
     /// Keeps the integrator's step control and energy ledger.
     fn keep_ledgers(&mut self, solver: &dyn Stepper) {
         self.step_control = solver.step_control();
+        if let Some(c) = self.step_control.as_mut() {
+            c.step_ripple = Some(c.step_ripple());
+        }
         self.energies = solver.energies();
         self.linear_solver = solver.linear_solver_stats();
     }
@@ -307,6 +313,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = time_step_warning(record, model) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = step_ripple_warning(integrator, record, model, &prep.built) {
+                    obs.diagnostic(&d);
+                }
                 if let Some(d) = seabed_contact_warning(integrator, record, model) {
                     obs.diagnostic(&d);
                 }
@@ -394,6 +403,18 @@ impl<'p> Simulation<'p> {
         if let Some(e) = record.extremes.as_mut() {
             e.observe(&self.prep.built, &self.loads, state, outputs, poses);
         }
+        // The supported anchors' reactions over every dynamic step, for their step ripple
+        // (docs/theory/fem.md#step-ripple-indicator).
+        if self.loads.phase == Phase::Dynamic {
+            let ends = &self.prep.built.line_ends;
+            record.anchor_reactions.resize(ends.len(), Vec::new());
+            for (series, l) in record.anchor_reactions.iter_mut().zip(ends) {
+                if l.supported[0] {
+                    let r = outputs.reaction[l.anchor];
+                    series.push((r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt());
+                }
+            }
+        }
     }
 
     /// Post-processes a state and hands it to the observer.
@@ -472,6 +493,79 @@ fn time_step_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
             res.range[0],
             res.range[1],
             100.0 * res.error
+        ),
+    ))
+}
+
+/// Step-to-step ripple near the top of a tension series (RMS, relative to its largest value)
+/// above which a run warns (docs/theory/fem.md#step-ripple-indicator).
+pub const STEP_RIPPLE_WARNING: f64 = 0.01;
+
+/// A warning when the peak element tension or a supported anchor's reaction carries a
+/// step-to-step oscillation near its top: [`aqua_fem::StepRipple::ripple`] of the peak tension
+/// or of an anchor's reaction series above [`STEP_RIPPLE_WARNING`]
+/// (docs/theory/fem.md#step-ripple-indicator). It names the element group whose member carried
+/// the peak at the largest alternation, and the line of the anchor with the largest ripple.
+fn step_ripple_warning(
+    integrator: &Integrator,
+    record: &RunRecord,
+    model: &Model,
+    built: &crate::build::Built,
+) -> Option<Diagnostic> {
+    let scheme = match integrator {
+        Integrator::Hht(s) if s.midpoint => format!("the midpoint rule with θ = {}", s.theta),
+        Integrator::Hht(s) => format!("HHT-α (α = {})", s.alpha),
+        _ => "this scheme".to_string(),
+    };
+    let mut what = Vec::new();
+    if let Some(r) = record
+        .step_control
+        .as_ref()
+        .and_then(|c| c.step_ripple)
+        .filter(|r| r.ripple > STEP_RIPPLE_WARNING)
+    {
+        let within = r
+            .element
+            .and_then(|e| model.groups().iter().find(|g| g.elements.contains(&e)))
+            .map_or_else(String::new, |g| format!(", in `{}`", g.name));
+        what.push(format!(
+            "the largest tension carries one of {:.1} % RMS (up to {:.1} % over {} steps \
+             near its top{within})",
+            100.0 * r.ripple,
+            100.0 * r.largest,
+            r.windows
+        ));
+    }
+    let anchor = record
+        .anchor_reactions
+        .iter()
+        .zip(&built.line_ends)
+        .map(|(series, l)| (aqua_fem::dynamics::step_ripple(series, &[]), &l.name))
+        .filter(|(r, _)| r.ripple > STEP_RIPPLE_WARNING)
+        .max_by(|a, b| a.0.ripple.total_cmp(&b.0.ripple));
+    if let Some((r, name)) = anchor {
+        what.push(format!(
+            "the anchor reaction of `{name}` carries one of {:.1} % RMS (up to {:.1} % over {} steps \
+             near its top)",
+            100.0 * r.ripple,
+            100.0 * r.largest,
+            r.windows
+        ));
+    }
+    if what.is_empty() {
+        return None;
+    }
+    Some(Diagnostic::warning(
+        "fem/step-ripple",
+        "dynamics",
+        format!(
+            "tension extremes at this time step are uncertain by about the step-to-step \
+             oscillation they carry near their top with {scheme}: {} \
+             (docs/theory/fem.md#step-ripple-indicator); the extremes over every step may lie \
+             several times that above a converged run; HHT-α damps the midpoint rule's, and \
+             where the member named is slack and snaps taut within single steps its peak may \
+             not converge with `dt` at all (docs/theory/fem.md#choice-of-the-default-scheme)",
+            what.join(", and ")
         ),
     ))
 }

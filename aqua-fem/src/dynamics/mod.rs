@@ -16,6 +16,7 @@ mod settings;
 mod snap_resolution;
 mod snapshot;
 mod step_control;
+mod step_ripple;
 
 pub use contact_resolution::{CONTACT_IMPACT, CONTACT_LOSS_WARNING, ContactResolution};
 pub use energy::{ENERGY_GROWTH_TOL, Energies};
@@ -26,6 +27,7 @@ pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKi
 pub use snap_resolution::{RESOLVED_PHASE, SNAP_EXCESS_WARNING, SnapResolution};
 pub use snapshot::Snapshot;
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
+pub use step_ripple::{MIN_RIPPLE_WINDOWS, StepRipple, step_ripple};
 
 use crate::error::{FemError, Result, invalid};
 use crate::line_relaxation::LineRelaxation;

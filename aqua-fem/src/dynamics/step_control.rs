@@ -77,6 +77,10 @@ pub struct StepControl {
     /// (docs/theory/fem.md#snap-resolution).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub snaps: Option<super::SnapResolution>,
+    /// The step-to-step ripple of the peak tension near its top, once the run is over
+    /// ([`StepControl::step_ripple`]; docs/theory/fem.md#step-ripple-indicator).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_ripple: Option<super::StepRipple>,
 }
 
 impl StepControl {
