@@ -142,6 +142,32 @@ pub(crate) fn analyse_ldlt(
     Ok(symbolic)
 }
 
+/// The numeric L·D·Lᵀ of the n × n symmetric matrix given by its upper triangle
+/// (`col_ptr`/`row_idx`/`values`, the pattern `symbolic` was analysed on) into `l_values`;
+/// `Err` on a zero pivot.
+pub(crate) fn factorize_ldlt(
+    symbolic: &SymbolicCholesky<usize>,
+    l_values: &mut [f64],
+    upper: (&[usize], &[usize], &[f64]),
+    mem: &mut MemBuffer,
+) -> std::result::Result<(), ()> {
+    let (col_ptr, row_idx, values) = upper;
+    let n = col_ptr.len() - 1;
+    let sym = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+    symbolic
+        .factorize_numeric_ldlt(
+            l_values,
+            SparseColMatRef::new(sym, values),
+            Side::Upper,
+            LdltRegularization::default(),
+            Par::Seq,
+            MemStack::new(mem),
+            Default::default(),
+        )
+        .map(|_| ())
+        .map_err(|_| ())
+}
+
 /// Why the symmetric path could not give the solution; the caller then uses the LU.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum SymmetricFallback {
@@ -247,25 +273,12 @@ impl SymmetricSolver {
                 l_values,
                 mem,
             } => {
-                let sym = SymbolicSparseColMatRef::new_checked(
-                    self.n,
-                    self.n,
-                    &self.up_col_ptr,
-                    None,
-                    &self.up_row_idx,
+                let upper = (
+                    &self.up_col_ptr[..],
+                    &self.up_row_idx[..],
+                    &self.up_values[..],
                 );
-                let mat = SparseColMatRef::new(sym, &self.up_values);
-                symbolic
-                    .factorize_numeric_ldlt(
-                        l_values,
-                        mat,
-                        Side::Upper,
-                        LdltRegularization::default(),
-                        Par::Seq,
-                        MemStack::new(mem),
-                        Default::default(),
-                    )
-                    .map(|_| ())
+                factorize_ldlt(symbolic, l_values, upper, mem)
                     .map_err(|_| SymmetricFallback::ZeroPivot)
             }
             SymmetricFactor::Blocks { schur, full } => {

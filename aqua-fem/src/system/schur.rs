@@ -6,15 +6,14 @@
 //! symmetric matrix (the dynamic tangent's symmetric part) an L·D·Lᵀ of half the work.
 
 use crate::error::{FemError, Result};
-use crate::symmetric::analyse_ldlt;
+use crate::symmetric::{analyse_ldlt, factorize_ldlt};
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::lu::partial_pivoting::{factor as dense_lu, solve as dense_solve};
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{LdltRef, SymbolicCholesky};
 use faer::sparse::linalg::lu::{LuRef, NumericLu, SymbolicLu, factorize_symbolic_lu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par};
 use rayon::prelude::*;
 
 const NONE: usize = usize::MAX;
@@ -140,19 +139,9 @@ impl Factor {
                 for (u, &p) in up_vals.iter_mut().zip(up_pos.iter()) {
                     *u = vals[p];
                 }
-                let sym = SymbolicSparseColMatRef::new_checked(n, n, up_col_ptr, None, up_row_idx);
-                symbolic
-                    .factorize_numeric_ldlt(
-                        l_values,
-                        SparseColMatRef::new(sym, up_vals),
-                        Side::Upper,
-                        LdltRegularization::default(),
-                        Par::Seq,
-                        MemStack::new(mem),
-                        Default::default(),
-                    )
-                    .map(|_| ())
-                    .map_err(|e| singular(&e))
+                let upper = (&up_col_ptr[..], &up_row_idx[..], &up_vals[..]);
+                factorize_ldlt(symbolic, l_values, upper, mem)
+                    .map_err(|_| singular(&"zero pivot in L·D·Lᵀ"))
             }
         }
     }
