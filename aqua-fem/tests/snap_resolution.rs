@@ -20,7 +20,7 @@ fn run(midpoint: bool, dt: f64) -> (f64, Option<SnapResolution>) {
         solver.step(&mut NoLoads).unwrap();
         peak = peak.max(solver.outputs().tension[0]);
     }
-    (peak, solver.step_control().snaps)
+    (peak, solver.step_control().snaps.clone())
 }
 
 #[test]

@@ -325,6 +325,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = snap_warning(record, model) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = support_snap_warning(record, &prep.built) {
+                    obs.diagnostic(&d);
+                }
                 r
             }
             Err(e) => Err(e),
@@ -623,7 +626,7 @@ fn seabed_contact_warning(
 /// [`aqua_fem::SnapResolution::excess`] above [`aqua_fem::SNAP_EXCESS_WARNING`]
 /// (docs/theory/fem.md#snap-resolution). It names the element group that snapped.
 fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
-    let s = record.step_control.as_ref()?.snaps?;
+    let s = record.step_control.as_ref()?.snaps.as_ref()?;
     if s.excess <= aqua_fem::SNAP_EXCESS_WARNING {
         return None;
     }
@@ -649,6 +652,55 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
             100.0 * s.excess,
             s.resolving_dt / aqua_fem::RESOLVED_PHASE * std::f64::consts::PI,
             s.dt,
+            s.resolving_dt,
+        ),
+    ))
+}
+
+/// A warning when the largest tension of an element with one end held (an anchor's, or a
+/// prescribed fairlead's) was reached at an unresolved snap of its own:
+/// [`aqua_fem::SnapResolution::support`] (docs/theory/fem.md#snap-resolution), for the supports
+/// whose reactions the outputs report, the supported ends of `[[line]]`s, each named.
+fn support_snap_warning(record: &RunRecord, built: &crate::build::Built) -> Option<Diagnostic> {
+    let snaps = record.step_control.as_ref()?.snaps.as_ref()?;
+    // The supports whose reactions are reported: the supported ends of `[[line]]`s.
+    let name = |s: &aqua_fem::SupportSnap| {
+        built.line_ends.iter().find_map(|l| {
+            if l.anchor_element == s.element && l.supported[0] {
+                Some(format!("the anchor reaction of `{}`", l.name))
+            } else if l.fairlead_element == s.element && l.supported[1] {
+                Some(format!("the fairlead reaction of `{}`", l.name))
+            } else {
+                None
+            }
+        })
+    };
+    let named: Vec<(String, &aqua_fem::SupportSnap)> = snaps
+        .support
+        .iter()
+        .filter_map(|s| name(s).map(|n| (n, s)))
+        .collect();
+    let (_, s) = named.first()?;
+    let what: Vec<&str> = named.iter().map(|(n, _)| n.as_str()).collect();
+    let (verb, others) = match what.len() {
+        1 => ("is", String::new()),
+        n => ("are", format!(" (the largest of the {n})")),
+    };
+    Some(Diagnostic::warning(
+        "fem/snap",
+        "dynamics",
+        format!(
+            "{} {verb} not resolved at this time step: each largest value over every step was \
+             reached as the element at the support snapped taut within a single step{others}, \
+             {:.0} N at t = {:.3} s in a step of {} s, closing at {:.3} m/s, which the step \
+             samples too coarsely to say how high the snap's crest is: the computed extreme may \
+             lie well above or below it (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s \
+             resolves such snaps",
+            what.join(", "),
+            s.tension,
+            s.t,
+            s.dt,
+            s.speed,
             s.resolving_dt,
         ),
     ))

@@ -6,6 +6,12 @@
 //! ω = √(k/m_r), at a peak tension of about T* = v_c·√(k·m_r). A step longer than
 //! `RESOLVED_PHASE`/ω misses that crest by more than 1 %; when such a snap's T* exceeds the
 //! largest tension the run computed, the run's largest tension is not resolved by the step.
+//!
+//! An element with one end held (an anchor's, or a prescribed fairlead's) carries the support's
+//! reaction. When its largest tension over the run is reached in a step in which it snapped
+//! unresolved, or in the step after, that extreme is the unresolved snap's — too high or too
+//! low by what the step misses of the crest — and so is the support's extreme reaction,
+//! whatever the run's largest tension is (`SnapResolution::support`).
 
 use crate::model::Model;
 use crate::system::sub;
@@ -21,7 +27,7 @@ pub const SNAP_EXCESS_WARNING: f64 = 0.01;
 
 /// The largest unresolved snap of a run (reported in run.json under `step_control.snaps`;
 /// docs/theory/fem.md#snap-resolution).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct SnapResolution {
     /// Unresolved snaps: elements that went taut within single steps longer than
     /// `RESOLVED_PHASE`/ω.
@@ -44,6 +50,51 @@ pub struct SnapResolution {
     pub excess: f64,
     /// The largest step that samples this snap's crest within 1 %, `RESOLVED_PHASE`/ω [s].
     pub resolving_dt: f64,
+    /// The elements with one end held whose largest tension was reached at an unresolved
+    /// snap of theirs (in its step or the next), largest tension first.
+    #[serde(default)]
+    pub support: Vec<SupportSnap>,
+}
+
+/// An element with one end held whose largest tension over the run was reached at an
+/// unresolved snap of its own, in the snap's step or the next: that extreme, and the
+/// support's reaction with it, is not resolved by the step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct SupportSnap {
+    /// The element.
+    pub element: usize,
+    /// Its group.
+    pub group: usize,
+    /// Its largest tension [N].
+    pub tension: f64,
+    /// The time at which it was reached [s].
+    pub t: f64,
+    /// The step of the snap [s].
+    pub dt: f64,
+    /// The snap's closing speed [m/s].
+    pub speed: f64,
+    /// The largest step that samples the snap's crest within 1 % [s].
+    pub resolving_dt: f64,
+}
+
+/// An unresolved snap of a supported element: its step [s], closing speed [m/s] and
+/// resolving step [s].
+#[derive(Debug, Clone, Copy)]
+struct SnapAt {
+    dt: f64,
+    speed: f64,
+    resolving_dt: f64,
+    /// The snap's estimated tension T* [N].
+    estimate: f64,
+}
+
+/// The largest tension of a supported element so far [N], when [s], and the unresolved snap
+/// of its own at which it was reached, if any.
+#[derive(Debug, Clone, Copy, Default)]
+struct SupportTop {
+    tension: f64,
+    t: f64,
+    snap: Option<SnapAt>,
 }
 
 /// A step's start: positions [m], velocities [m/s] and accelerations [m/s²] of the nodes.
@@ -56,20 +107,62 @@ pub(crate) struct SnapTracker {
     computed: f64,
     /// The largest unresolved snap (estimate 0 before any).
     worst: SnapResolution,
+    /// The elements with one end held, and their groups.
+    support: Vec<usize>,
+    support_group: Vec<usize>,
+    /// Each element's index in `support` (`usize::MAX`: not supported).
+    slot: Vec<usize>,
+    /// Each supported element's largest tension so far.
+    top: Vec<SupportTop>,
+    /// Each supported element's unresolved snap in the last accepted step and the one before.
+    current: Vec<Option<SnapAt>>,
+    previous: Vec<Option<SnapAt>>,
+    /// The end of the last accepted step [s].
+    t_now: f64,
 }
 
 impl SnapTracker {
     /// The tracker of `model`'s cable elements (None without any).
     pub(crate) fn new(model: &Model) -> Option<Self> {
-        (!model.elements().is_empty()).then(|| Self {
+        if model.elements().is_empty() {
+            return None;
+        }
+        let mut slot = vec![usize::MAX; model.elements().len()];
+        let (mut support, mut support_group) = (Vec::new(), Vec::new());
+        for (i, el) in model.elements().iter().enumerate() {
+            if held(model, el.a) != held(model, el.b) {
+                slot[i] = support.len();
+                support.push(i);
+                support_group.push(el.group);
+            }
+        }
+        let n = support.len();
+        Some(Self {
             computed: 0.0,
             worst: SnapResolution::default(),
+            support,
+            support_group,
+            slot,
+            top: vec![SupportTop::default(); n],
+            current: vec![None; n],
+            previous: vec![None; n],
+            t_now: 0.0,
         })
     }
 
     /// Records an accepted state's element tensions [N].
     pub(crate) fn observe(&mut self, tension: &[f64]) {
         self.computed = tension.iter().fold(self.computed, |m, &t| m.max(t));
+        for (k, &e) in self.support.iter().enumerate() {
+            let top = &mut self.top[k];
+            if tension[e] > top.tension {
+                *top = SupportTop {
+                    tension: tension[e],
+                    t: self.t_now,
+                    snap: self.current[k].or(self.previous[k]),
+                };
+            }
+        }
     }
 
     /// Records the snaps of an accepted step of length h [s] from (x_n, v_n) at time t [s] to
@@ -83,6 +176,9 @@ impl SnapTracker {
         t: f64,
         h: f64,
     ) {
+        std::mem::swap(&mut self.current, &mut self.previous);
+        self.current.fill(None);
+        self.t_now = t + h;
         for (i, el) in model.elements().iter().enumerate() {
             let Some((speed, mr)) = snap(model, el, added, (xn, vn, an), (x1, v1), h) else {
                 continue;
@@ -94,6 +190,14 @@ impl SnapTracker {
             }
             self.worst.snaps += 1;
             let estimate = speed * (k * mr).sqrt();
+            if let Some(slot) = self.current.get_mut(self.slot[i]) {
+                *slot = Some(SnapAt {
+                    dt: h,
+                    speed,
+                    resolving_dt: RESOLVED_PHASE / omega,
+                    estimate,
+                });
+            }
             if estimate > self.worst.estimate {
                 self.worst = SnapResolution {
                     snaps: self.worst.snaps,
@@ -113,14 +217,36 @@ impl SnapTracker {
     /// The run's largest unresolved snap so far, against the largest tension computed so far
     /// (None before any unresolved snap).
     pub(crate) fn resolution(&self) -> Option<SnapResolution> {
+        let mut support: Vec<SupportSnap> = self
+            .support
+            .iter()
+            .zip(&self.support_group)
+            .zip(&self.top)
+            .filter_map(|((&element, &group), top)| {
+                // A snap whose whole crest T* is below the tolerance of the extreme cannot
+                // move it by more.
+                let s = top.snap?;
+                (s.estimate >= SNAP_EXCESS_WARNING * top.tension).then_some(SupportSnap {
+                    element,
+                    group,
+                    tension: top.tension,
+                    t: top.t,
+                    dt: s.dt,
+                    speed: s.speed,
+                    resolving_dt: s.resolving_dt,
+                })
+            })
+            .collect();
+        support.sort_by(|a, b| b.tension.total_cmp(&a.tension));
         (self.worst.estimate > 0.0).then(|| SnapResolution {
+            support,
             computed: self.computed,
             excess: if self.computed > 0.0 {
                 (self.worst.estimate - self.computed) / self.computed
             } else {
                 f64::MAX
             },
-            ..self.worst
+            ..self.worst.clone()
         })
     }
 }
@@ -274,5 +400,49 @@ mod tests {
         assert!((speed - 1.5).abs() < 1e-12, "{speed}");
         // Taut at the start: not a snap of this step.
         assert!(snap(&m, &el, &[], (&x1, &vn, &z), (&x1, &v1), h).is_none());
+    }
+    /// The rope's held end makes it a support element: its largest tension, reached in the
+    /// step of an unresolved snap (ω·Δt = 100 rad/s · 0.1 s) or the step after, is reported,
+    /// until a larger tension without a snap replaces it; a snap whose crest T* is below 1 % of
+    /// the extreme is not.
+    #[test]
+    fn a_support_extreme_reached_at_an_unresolved_snap_is_reported() {
+        let m = model();
+        let mut tr = SnapTracker::new(&m).expect("a cable");
+        let z = [[0.0; 3]; 2];
+        let h = 0.1;
+        let slack = [[0.0; 3], [0.9, 0.0, 0.0]];
+        let taut = [[0.0; 3], [1.01, 0.0, 0.0]];
+        let out = [[0.0; 3], [1.0, 0.0, 0.0]];
+        // Slack to taut at 1.1 m/s: T* = 1.1·√(1e5·10) = 1 100 N.
+        tr.step(&m, &[], (&slack, &out, &z), (&taut, &z), 0.0, h);
+        tr.observe(&[1000.0]);
+        let r = tr.resolution().expect("a snap");
+        assert_eq!(r.support.len(), 1);
+        let s = r.support[0];
+        assert_eq!((s.element, s.tension, s.dt), (0, 1000.0, h));
+        assert!(
+            (s.t - h).abs() < 1e-12 && (s.speed - 1.1).abs() < 1e-12,
+            "{s:?}"
+        );
+        // The step after the snap: a new largest tension there is still the snap's.
+        tr.step(&m, &[], (&taut, &z, &z), (&taut, &z), h, h);
+        tr.observe(&[1200.0]);
+        let s = tr.resolution().unwrap().support[0];
+        assert_eq!(s.tension, 1200.0);
+        assert!((s.t - 2.0 * h).abs() < 1e-12);
+        // Two steps after: a larger tension is a resolved extreme.
+        tr.step(&m, &[], (&taut, &z, &z), (&taut, &z), 2.0 * h, h);
+        tr.observe(&[1500.0]);
+        assert!(tr.resolution().unwrap().support.is_empty());
+        // A snap closing 0.11 mm in a step (1.1 mm/s, T* = 1.1 N) under a 1 000 N extreme.
+        let mut tr = SnapTracker::new(&m).unwrap();
+        let barely = [[0.0; 3], [0.9999, 0.0, 0.0]];
+        let just = [[0.0; 3], [1.00001, 0.0, 0.0]];
+        tr.step(&m, &[], (&barely, &z, &z), (&just, &z), 0.0, h);
+        tr.observe(&[1000.0]);
+        let r = tr.resolution().expect("an unresolved snap");
+        assert!((r.estimate - 1.1).abs() < 1e-6, "{}", r.estimate);
+        assert!(r.support.is_empty());
     }
 }
