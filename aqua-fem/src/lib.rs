@@ -145,7 +145,7 @@ pub use dynamics::{
     CONTACT_IMPACT, CONTACT_LOSS_WARNING, ContactResolution, DEFAULT_ALPHA, DEFAULT_THETA,
     DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, ExtremeResolution,
     LinearSolverKind, LinearSolverStats, MassMatrix, RESOLVED_PHASE, SNAP_EXCESS_WARNING,
-    SnapResolution, Snapshot, StepControl, StepEvent, StepReport, SupportSnap, TensionResolution,
+    SnapExtreme, SnapResolution, Snapshot, StepControl, StepEvent, StepReport, TensionResolution,
 };
 pub use error::{FemError, LoadError, Result, StaticFailure, StepFailure};
 pub use explicit::{ExplicitScheme, ExplicitSettings, ExplicitSolver};

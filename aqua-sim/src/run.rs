@@ -325,6 +325,9 @@ impl<'p> Simulation<'p> {
                 if let Some(d) = snap_warning(record, model) {
                     obs.diagnostic(&d);
                 }
+                if let Some(d) = peak_snap_warning(record, model) {
+                    obs.diagnostic(&d);
+                }
                 if let Some(d) = support_snap_warning(record, &prep.built) {
                     obs.diagnostic(&d);
                 }
@@ -657,6 +660,30 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
     ))
 }
 
+/// A warning when the run's largest tension was reached at an unresolved snap of its element:
+/// [`aqua_fem::SnapResolution::peak`] (docs/theory/fem.md#snap-resolution). It names the
+/// element and its group.
+fn peak_snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
+    let s = record.step_control.as_ref()?.snaps.as_ref()?.peak?;
+    let group = model
+        .groups()
+        .get(s.group)
+        .map_or_else(String::new, |g| format!(" of `{}`", g.name));
+    Some(Diagnostic::warning(
+        "fem/snap",
+        "dynamics",
+        format!(
+            "the largest tension of this run is not resolved at this time step: {:.0} N over \
+             every step, in element {}{group} at t = {:.3} s, was reached as that element \
+             snapped taut within a single step of {} s, closing at {:.3} m/s, which the step \
+             samples too coarsely to say how high the snap's crest is: the computed extreme may \
+             lie well above or below it (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s \
+             resolves such snaps",
+            s.tension, s.element, s.t, s.dt, s.speed, s.resolving_dt,
+        ),
+    ))
+}
+
 /// A warning when the largest tension of an element with one end held (an anchor's, or a
 /// prescribed fairlead's) was reached at an unresolved snap of its own:
 /// [`aqua_fem::SnapResolution::support`] (docs/theory/fem.md#snap-resolution), for the supports
@@ -664,7 +691,7 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
 fn support_snap_warning(record: &RunRecord, built: &crate::build::Built) -> Option<Diagnostic> {
     let snaps = record.step_control.as_ref()?.snaps.as_ref()?;
     // The supports whose reactions are reported: the supported ends of `[[line]]`s.
-    let name = |s: &aqua_fem::SupportSnap| {
+    let name = |s: &aqua_fem::SnapExtreme| {
         built.line_ends.iter().find_map(|l| {
             if l.anchor_element == s.element && l.supported[0] {
                 Some(format!("the anchor reaction of `{}`", l.name))
@@ -675,7 +702,7 @@ fn support_snap_warning(record: &RunRecord, built: &crate::build::Built) -> Opti
             }
         })
     };
-    let named: Vec<(String, &aqua_fem::SupportSnap)> = snaps
+    let named: Vec<(String, &aqua_fem::SnapExtreme)> = snaps
         .support
         .iter()
         .filter_map(|s| name(s).map(|n| (n, s)))

@@ -7,11 +7,12 @@
 //! `RESOLVED_PHASE`/ω misses that crest by more than 1 %; when such a snap's T* exceeds the
 //! largest tension the run computed, the run's largest tension is not resolved by the step.
 //!
-//! An element with one end held (an anchor's, or a prescribed fairlead's) carries the support's
-//! reaction. When its largest tension over the run is reached in a step in which it snapped
-//! unresolved, or in the step after, that extreme is the unresolved snap's — too high or too
-//! low by what the step misses of the crest — and so is the support's extreme reaction,
-//! whatever the run's largest tension is (`SnapResolution::support`).
+//! When the run's largest tension is reached in an element in a step in which that element
+//! snapped unresolved, or in the step after, that extreme is the unresolved snap's: too high or
+//! too low by what the step misses of the crest (`SnapResolution::peak`). The same holds, for
+//! its own extreme, of each element with one end held (an anchor's, or a prescribed
+//! fairlead's), which carries the support's reaction whatever the run's largest tension is
+//! (`SnapResolution::support`).
 
 use crate::model::Model;
 use crate::system::sub;
@@ -50,17 +51,21 @@ pub struct SnapResolution {
     pub excess: f64,
     /// The largest step that samples this snap's crest within 1 %, `RESOLVED_PHASE`/ω [s].
     pub resolving_dt: f64,
+    /// The run's largest tension if it was reached at an unresolved snap of its element (in
+    /// the snap's step or the next), with a crest T* of at least 1 % of it.
+    #[serde(default)]
+    pub peak: Option<SnapExtreme>,
     /// The elements with one end held whose largest tension was reached at an unresolved
     /// snap of theirs (in its step or the next), largest tension first.
     #[serde(default)]
-    pub support: Vec<SupportSnap>,
+    pub support: Vec<SnapExtreme>,
 }
 
-/// An element with one end held whose largest tension over the run was reached at an
-/// unresolved snap of its own, in the snap's step or the next: that extreme, and the
-/// support's reaction with it, is not resolved by the step.
+/// An element whose largest tension over the run (the run's largest, or a supported
+/// element's own) was reached at an unresolved snap of its own, in the snap's step or the
+/// next: that extreme is not resolved by the step.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-pub struct SupportSnap {
+pub struct SnapExtreme {
     /// The element.
     pub element: usize,
     /// Its group.
@@ -88,13 +93,30 @@ struct SnapAt {
     estimate: f64,
 }
 
-/// The largest tension of a supported element so far [N], when [s], and the unresolved snap
-/// of its own at which it was reached, if any.
+/// The largest tension of an element so far [N], when [s], and the unresolved snap of its
+/// own at which it was reached, if any.
 #[derive(Debug, Clone, Copy, Default)]
 struct SupportTop {
     tension: f64,
     t: f64,
     snap: Option<SnapAt>,
+}
+
+impl SupportTop {
+    /// The extreme as reached at an unresolved snap of `element` (of `group`), if it was and
+    /// the snap's crest T* is at least 1 % of it (a smaller crest cannot move it by more).
+    fn extreme(&self, element: usize, group: usize) -> Option<SnapExtreme> {
+        let s = self.snap?;
+        (s.estimate >= SNAP_EXCESS_WARNING * self.tension).then_some(SnapExtreme {
+            element,
+            group,
+            tension: self.tension,
+            t: self.t,
+            dt: s.dt,
+            speed: s.speed,
+            resolving_dt: s.resolving_dt,
+        })
+    }
 }
 
 /// A step's start: positions [m], velocities [m/s] and accelerations [m/s²] of the nodes.
@@ -117,6 +139,12 @@ pub(crate) struct SnapTracker {
     /// Each supported element's unresolved snap in the last accepted step and the one before.
     current: Vec<Option<SnapAt>>,
     previous: Vec<Option<SnapAt>>,
+    /// Every unresolved snap (element, group, snap) of the last accepted step and the one
+    /// before.
+    snapped_now: Vec<(usize, usize, SnapAt)>,
+    snapped_before: Vec<(usize, usize, SnapAt)>,
+    /// The run's largest tension so far, its element and group, when, and its snap.
+    peak: (SupportTop, usize, usize),
     /// The end of the last accepted step [s].
     t_now: f64,
 }
@@ -146,13 +174,38 @@ impl SnapTracker {
             top: vec![SupportTop::default(); n],
             current: vec![None; n],
             previous: vec![None; n],
+            snapped_now: Vec::new(),
+            snapped_before: Vec::new(),
+            peak: (SupportTop::default(), 0, 0),
             t_now: 0.0,
         })
     }
 
     /// Records an accepted state's element tensions [N].
     pub(crate) fn observe(&mut self, tension: &[f64]) {
-        self.computed = tension.iter().fold(self.computed, |m, &t| m.max(t));
+        let (mut e, mut largest) = (0, f64::NEG_INFINITY);
+        for (i, &t) in tension.iter().enumerate() {
+            if t > largest {
+                (e, largest) = (i, t);
+            }
+        }
+        if largest > self.computed {
+            self.computed = largest;
+            let snap = self
+                .snapped_now
+                .iter()
+                .chain(&self.snapped_before)
+                .find(|s| s.0 == e);
+            self.peak = (
+                SupportTop {
+                    tension: largest,
+                    t: self.t_now,
+                    snap: snap.map(|s| s.2),
+                },
+                e,
+                snap.map_or(0, |s| s.1),
+            );
+        }
         for (k, &e) in self.support.iter().enumerate() {
             let top = &mut self.top[k];
             if tension[e] > top.tension {
@@ -178,6 +231,8 @@ impl SnapTracker {
     ) {
         std::mem::swap(&mut self.current, &mut self.previous);
         self.current.fill(None);
+        std::mem::swap(&mut self.snapped_now, &mut self.snapped_before);
+        self.snapped_now.clear();
         self.t_now = t + h;
         for (i, el) in model.elements().iter().enumerate() {
             let Some((speed, mr)) = snap(model, el, added, (xn, vn, an), (x1, v1), h) else {
@@ -190,14 +245,16 @@ impl SnapTracker {
             }
             self.worst.snaps += 1;
             let estimate = speed * (k * mr).sqrt();
+            let at = SnapAt {
+                dt: h,
+                speed,
+                resolving_dt: RESOLVED_PHASE / omega,
+                estimate,
+            };
             if let Some(slot) = self.current.get_mut(self.slot[i]) {
-                *slot = Some(SnapAt {
-                    dt: h,
-                    speed,
-                    resolving_dt: RESOLVED_PHASE / omega,
-                    estimate,
-                });
+                *slot = Some(at);
             }
+            self.snapped_now.push((i, el.group, at));
             if estimate > self.worst.estimate {
                 self.worst = SnapResolution {
                     snaps: self.worst.snaps,
@@ -217,28 +274,17 @@ impl SnapTracker {
     /// The run's largest unresolved snap so far, against the largest tension computed so far
     /// (None before any unresolved snap).
     pub(crate) fn resolution(&self) -> Option<SnapResolution> {
-        let mut support: Vec<SupportSnap> = self
+        let mut support: Vec<SnapExtreme> = self
             .support
             .iter()
             .zip(&self.support_group)
             .zip(&self.top)
-            .filter_map(|((&element, &group), top)| {
-                // A snap whose whole crest T* is below the tolerance of the extreme cannot
-                // move it by more.
-                let s = top.snap?;
-                (s.estimate >= SNAP_EXCESS_WARNING * top.tension).then_some(SupportSnap {
-                    element,
-                    group,
-                    tension: top.tension,
-                    t: top.t,
-                    dt: s.dt,
-                    speed: s.speed,
-                    resolving_dt: s.resolving_dt,
-                })
-            })
+            .filter_map(|((&element, &group), top)| top.extreme(element, group))
             .collect();
         support.sort_by(|a, b| b.tension.total_cmp(&a.tension));
+        let (top, element, group) = &self.peak;
         (self.worst.estimate > 0.0).then(|| SnapResolution {
+            peak: top.extreme(*element, *group),
             support,
             computed: self.computed,
             excess: if self.computed > 0.0 {
@@ -403,8 +449,8 @@ mod tests {
     }
     /// The rope's held end makes it a support element: its largest tension, reached in the
     /// step of an unresolved snap (ω·Δt = 100 rad/s · 0.1 s) or the step after, is reported,
-    /// until a larger tension without a snap replaces it; a snap whose crest T* is below 1 % of
-    /// the extreme is not.
+    /// as the run's largest, until a larger tension without a snap replaces it; a snap whose
+    /// crest T* is below 1 % of the extreme is not.
     #[test]
     fn a_support_extreme_reached_at_an_unresolved_snap_is_reported() {
         let m = model();
@@ -421,6 +467,8 @@ mod tests {
         assert_eq!(r.support.len(), 1);
         let s = r.support[0];
         assert_eq!((s.element, s.tension, s.dt), (0, 1000.0, h));
+        // It is also the run's largest tension.
+        assert_eq!(r.peak, Some(s));
         assert!(
             (s.t - h).abs() < 1e-12 && (s.speed - 1.1).abs() < 1e-12,
             "{s:?}"
@@ -434,7 +482,8 @@ mod tests {
         // Two steps after: a larger tension is a resolved extreme.
         tr.step(&m, &[], (&taut, &z, &z), (&taut, &z), 2.0 * h, h);
         tr.observe(&[1500.0]);
-        assert!(tr.resolution().unwrap().support.is_empty());
+        let r = tr.resolution().unwrap();
+        assert!(r.support.is_empty() && r.peak.is_none(), "{r:?}");
         // A snap closing 0.11 mm in a step (1.1 mm/s, T* = 1.1 N) under a 1 000 N extreme.
         let mut tr = SnapTracker::new(&m).unwrap();
         let barely = [[0.0; 3], [0.9999, 0.0, 0.0]];
@@ -443,6 +492,6 @@ mod tests {
         tr.observe(&[1000.0]);
         let r = tr.resolution().expect("an unresolved snap");
         assert!((r.estimate - 1.1).abs() < 1e-6, "{}", r.estimate);
-        assert!(r.support.is_empty());
+        assert!(r.support.is_empty() && r.peak.is_none(), "{r:?}");
     }
 }
