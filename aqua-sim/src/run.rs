@@ -633,10 +633,7 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
     if s.excess <= aqua_fem::SNAP_EXCESS_WARNING {
         return None;
     }
-    let group = model
-        .groups()
-        .get(s.group)
-        .map_or_else(String::new, |g| format!(" of `{}`", g.name));
+    let group = group_label(model, s.group);
     Some(Diagnostic::warning(
         "fem/snap",
         "dynamics",
@@ -665,21 +662,18 @@ fn snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
 /// element and its group.
 fn peak_snap_warning(record: &RunRecord, model: &Model) -> Option<Diagnostic> {
     let s = record.step_control.as_ref()?.snaps.as_ref()?.peak?;
-    let group = model
-        .groups()
-        .get(s.group)
-        .map_or_else(String::new, |g| format!(" of `{}`", g.name));
     Some(Diagnostic::warning(
         "fem/snap",
         "dynamics",
         format!(
             "the largest tension of this run is not resolved at this time step: {:.0} N over \
-             every step, in element {}{group} at t = {:.3} s, was reached as that element \
-             snapped taut within a single step of {} s, closing at {:.3} m/s, which the step \
-             samples too coarsely to say how high the snap's crest is: the computed extreme may \
-             lie well above or below it (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s \
-             resolves such snaps",
-            s.tension, s.element, s.t, s.dt, s.speed, s.resolving_dt,
+             every step, in element {}{} at t = {:.3} s, was reached as that element snapped \
+             taut {}",
+            s.tension,
+            s.element,
+            group_label(model, s.group),
+            s.t,
+            unresolved_snap(&s),
         ),
     ))
 }
@@ -718,19 +712,33 @@ fn support_snap_warning(record: &RunRecord, built: &crate::build::Built) -> Opti
         "dynamics",
         format!(
             "{} {verb} not resolved at this time step: each largest value over every step was \
-             reached as the element at the support snapped taut within a single step{others}, \
-             {:.0} N at t = {:.3} s in a step of {} s, closing at {:.3} m/s, which the step \
-             samples too coarsely to say how high the snap's crest is: the computed extreme may \
-             lie well above or below it (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s \
-             resolves such snaps",
+             reached as the element at the support snapped taut{others}, {:.0} N at t = {:.3} s \
+             {}",
             what.join(", "),
             s.tension,
             s.t,
-            s.dt,
-            s.speed,
-            s.resolving_dt,
+            unresolved_snap(s),
         ),
     ))
+}
+
+/// The words shared by the warnings of an extreme reached at an unresolved snap: the snap's
+/// step, closing speed and resolving step.
+fn unresolved_snap(s: &aqua_fem::SnapExtreme) -> String {
+    format!(
+        "within a single step of {} s, closing at {:.3} m/s, which the step samples too coarsely \
+         to say how high the snap's crest is: the computed extreme may lie well above or below \
+         it (docs/theory/fem.md#snap-resolution); dt ≤ {:.1e} s resolves such snaps",
+        s.dt, s.speed, s.resolving_dt
+    )
+}
+
+/// " of `group`" for element group `g` of `model` (empty if there is no such group).
+fn group_label(model: &Model, g: usize) -> String {
+    model
+        .groups()
+        .get(g)
+        .map_or_else(String::new, |g| format!(" of `{}`", g.name))
 }
 
 /// A warning when `extreme_tolerance` could not be met: steps accepted at `dt_min` with a
