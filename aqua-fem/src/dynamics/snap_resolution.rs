@@ -82,8 +82,7 @@ pub struct SnapExtreme {
     pub resolving_dt: f64,
 }
 
-/// An unresolved snap of a supported element: its step [s], closing speed [m/s] and
-/// resolving step [s].
+/// An unresolved snap of an element: its step [s], closing speed [m/s] and resolving step [s].
 #[derive(Debug, Clone, Copy)]
 struct SnapAt {
     dt: f64,
@@ -96,13 +95,13 @@ struct SnapAt {
 /// The largest tension of an element so far [N], when [s], and the unresolved snap of its
 /// own at which it was reached, if any.
 #[derive(Debug, Clone, Copy, Default)]
-struct SupportTop {
+struct ElementTop {
     tension: f64,
     t: f64,
     snap: Option<SnapAt>,
 }
 
-impl SupportTop {
+impl ElementTop {
     /// The extreme as reached at an unresolved snap of `element` (of `group`), if it was and
     /// the snap's crest T* is at least 1 % of it (a smaller crest cannot move it by more).
     fn extreme(&self, element: usize, group: usize) -> Option<SnapExtreme> {
@@ -135,7 +134,7 @@ pub(crate) struct SnapTracker {
     /// Each element's index in `support` (`usize::MAX`: not supported).
     slot: Vec<usize>,
     /// Each supported element's largest tension so far.
-    top: Vec<SupportTop>,
+    top: Vec<ElementTop>,
     /// Each supported element's unresolved snap in the last accepted step and the one before.
     current: Vec<Option<SnapAt>>,
     previous: Vec<Option<SnapAt>>,
@@ -144,7 +143,7 @@ pub(crate) struct SnapTracker {
     snapped_now: Vec<(usize, usize, SnapAt)>,
     snapped_before: Vec<(usize, usize, SnapAt)>,
     /// The run's largest tension so far, its element and group, when, and its snap.
-    peak: (SupportTop, usize, usize),
+    peak: (ElementTop, usize, usize),
     /// The end of the last accepted step [s].
     t_now: f64,
 }
@@ -171,12 +170,12 @@ impl SnapTracker {
             support,
             support_group,
             slot,
-            top: vec![SupportTop::default(); n],
+            top: vec![ElementTop::default(); n],
             current: vec![None; n],
             previous: vec![None; n],
             snapped_now: Vec::new(),
             snapped_before: Vec::new(),
-            peak: (SupportTop::default(), 0, 0),
+            peak: (ElementTop::default(), 0, 0),
             t_now: 0.0,
         })
     }
@@ -197,7 +196,7 @@ impl SnapTracker {
                 .chain(&self.snapped_before)
                 .find(|s| s.0 == e);
             self.peak = (
-                SupportTop {
+                ElementTop {
                     tension: largest,
                     t: self.t_now,
                     snap: snap.map(|s| s.2),
@@ -209,7 +208,7 @@ impl SnapTracker {
         for (k, &e) in self.support.iter().enumerate() {
             let top = &mut self.top[k];
             if tension[e] > top.tension {
-                *top = SupportTop {
+                *top = ElementTop {
                     tension: tension[e],
                     t: self.t_now,
                     snap: self.current[k].or(self.previous[k]),
@@ -447,6 +446,7 @@ mod tests {
         // Taut at the start: not a snap of this step.
         assert!(snap(&m, &el, &[], (&x1, &vn, &z), (&x1, &v1), h).is_none());
     }
+
     /// The rope's held end makes it a support element: its largest tension, reached in the
     /// step of an unresolved snap (ω·Δt = 100 rad/s · 0.1 s) or the step after, is reported,
     /// as the run's largest, until a larger tension without a snap replaces it; a snap whose
