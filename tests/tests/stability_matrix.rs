@@ -8,7 +8,7 @@
 //! must also not warn (no false alarms). Cells measured wrong without a word are listed in the
 //! docs as open; they are not asserted here.
 //!
-//! Slow (about 5 minutes in release): `cargo test --release -p aqua-tests --test
+//! Slow (about 6 minutes in release): `cargo test --release -p aqua-tests --test
 //! stability_matrix -- --ignored` (a step of `.ci/run`).
 
 mod common;
