@@ -272,17 +272,38 @@ impl SnapTracker {
 
     /// The run's largest unresolved snap so far, against the largest tension computed so far
     /// (None before any unresolved snap).
+    #[cfg(test)]
     pub(crate) fn resolution(&self) -> Option<SnapResolution> {
-        let mut support: Vec<SnapExtreme> = self
-            .support
-            .iter()
-            .zip(&self.support_group)
-            .zip(&self.top)
-            .filter_map(|((&element, &group), top)| top.extreme(element, group))
-            .collect();
-        support.sort_by(|a, b| b.tension.total_cmp(&a.tension));
+        let mut r = None;
+        self.resolve_into(&mut r);
+        r
+    }
+
+    /// [`SnapTracker::resolution`] written into `out`, reusing the list of supports that `out`
+    /// already holds: called after every accepted step, it allocates only when that list grows.
+    pub(crate) fn resolve_into(&self, out: &mut Option<SnapResolution>) {
+        if self.worst.estimate <= 0.0 {
+            *out = None;
+            return;
+        }
+        let mut support = out.take().map(|r| r.support).unwrap_or_default();
+        support.clear();
+        support.extend(
+            self.support
+                .iter()
+                .zip(&self.support_group)
+                .zip(&self.top)
+                .filter_map(|((&element, &group), top)| top.extreme(element, group)),
+        );
+        // Largest first; equal tensions in element order, so the list is the same at any
+        // number of threads.
+        support.sort_unstable_by(|a, b| {
+            b.tension
+                .total_cmp(&a.tension)
+                .then(a.element.cmp(&b.element))
+        });
         let (top, element, group) = &self.peak;
-        (self.worst.estimate > 0.0).then(|| SnapResolution {
+        *out = Some(SnapResolution {
             peak: top.extreme(*element, *group),
             support,
             computed: self.computed,
@@ -292,7 +313,7 @@ impl SnapTracker {
                 f64::MAX
             },
             ..self.worst.clone()
-        })
+        });
     }
 }
 

@@ -280,7 +280,7 @@ impl DynamicSolver<'_> {
                     self.accept_bookkeeping(h, false);
                     if let Some(snaps) = self.snaps.as_mut() {
                         snaps.observe(&self.outputs.tension);
-                        self.control.snaps = snaps.resolution();
+                        snaps.resolve_into(&mut self.control.snaps);
                     }
                     if let Some(c) = self.extremes.as_mut() {
                         c.accept(
