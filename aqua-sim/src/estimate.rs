@@ -67,8 +67,16 @@ pub const DYNAMIC_PER_WAVE_POINT: f64 = 30e-9;
 /// iterations while it preconditions well, so less than in statics).
 pub const DYNAMIC_PER_NET_DOF2: f64 = 1.1e-10;
 /// Newton iterations per simulated second when something floats on slack lines in waves
-/// (halvings included; farm 189, moored cage 255).
+/// (halvings included; farm 189, moored cage 255), up to [`FLOATING_REFERENCE_DOFS`].
 pub const FLOATING_ITERATIONS_PER_SECOND: f64 = 220.0;
+/// Free DOFs (the bundled farm's) above which the floating iterations per second grow as
+/// (free DOFs / this)^[`FLOATING_SIZE_EXPONENT`].
+pub const FLOATING_REFERENCE_DOFS: f64 = 4605.0;
+/// How the floating iterations per second grow with the model: a larger farm has more slack
+/// members, and a step fails Newton when any of them does, so its step is halved further
+/// (the full-scale farm, 103 013 free DOFs: 424 per second over its first 12 s against the
+/// bundled farm's 189, ln(424/189)/ln(103 013/4 605) = 0.26).
+pub const FLOATING_SIZE_EXPONENT: f64 = 0.26;
 
 impl Workload {
     /// Expected Newton iterations of the static solve: 2 evaluations when nothing is free,
@@ -122,7 +130,10 @@ impl Workload {
     pub fn dynamic_iterations(&self) -> f64 {
         match self.driving {
             Driving::None => 0.0,
-            Driving::FloatingInWaves => FLOATING_ITERATIONS_PER_SECOND * self.t_end,
+            Driving::FloatingInWaves => {
+                let size = (self.free_dofs as f64 / FLOATING_REFERENCE_DOFS).max(1.0);
+                FLOATING_ITERATIONS_PER_SECOND * size.powf(FLOATING_SIZE_EXPONENT) * self.t_end
+            }
             // Mooring chain 2.05 per step (line and seabed relaxation).
             Driving::Prescribed => 2.0 * self.steps as f64,
             // Reference cage and buoy mooring in a current: 1.0 per step.
@@ -292,5 +303,25 @@ mod tests {
             ..none
         };
         assert_eq!(floating.dynamic_iterations(), 220.0 * 30.0);
+    }
+
+    /// A larger floating model halves its step further, so it takes more iterations per
+    /// simulated second, though fewer than in proportion to its size; below the bundled farm's
+    /// size the rate is the examples' 220 per second.
+    #[test]
+    fn a_larger_floating_farm_takes_more_iterations_per_second() {
+        let floating = |free_dofs| Workload {
+            free_dofs,
+            driving: Driving::FloatingInWaves,
+            t_end: 12.0,
+            ..Default::default()
+        };
+        assert_eq!(floating(1287).dynamic_iterations(), 220.0 * 12.0);
+        assert_eq!(floating(4605).dynamic_iterations(), 220.0 * 12.0);
+        let (a, b) = (
+            floating(50_000).dynamic_iterations(),
+            floating(100_000).dynamic_iterations(),
+        );
+        assert!(a > 220.0 * 12.0 && b > a && b < 2.0 * a, "{a} {b}");
     }
 }
