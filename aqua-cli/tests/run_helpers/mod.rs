@@ -478,7 +478,7 @@ pub fn interrupt_statics(signal: &str, code: i32) {
     )
     .unwrap();
     let child = spawn_quiet_run(&scene, &out);
-    // Some 20 Newton iterations of work, however loaded the machine is.
+    // 6 s of the run's own processor time, however loaded the machine is.
     wait_for_cpu_time(&child, Duration::from_secs(6));
     let pvd = out.join("reference-cage.pvd");
     assert!(
