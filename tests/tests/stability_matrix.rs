@@ -107,9 +107,9 @@ fn warned(o: &Outcome) -> bool {
     })
 }
 
-/// Asserts a chain cell's extremes over every step against a converged every-step reference:
-/// the largest element tension and the anchor reaction each within 1 %, or a warning (with
-/// `may_warn`); with `may_warn` false also no warning.
+/// Asserts a cell's extremes over every step against a converged every-step reference: the
+/// largest element tension and the anchor reaction (when the scene has one) each within 1 %, or
+/// a warning (with `may_warn`); with `may_warn` false also no warning.
 fn check_every_step(name: &str, c: &Cell<'_>, reference: EveryStep, may_warn: bool) {
     let o = &c.outcome;
     if o.error.is_some() {
@@ -119,6 +119,10 @@ fn check_every_step(name: &str, c: &Cell<'_>, reference: EveryStep, may_warn: bo
         ("largest tension", o.every.tension, reference.tension),
         ("anchor", o.every.anchor, reference.anchor),
     ] {
+        if want.is_nan() {
+            // No anchor in the scene.
+            continue;
+        }
         let rel = (got - want) / want;
         eprintln!(
             "{name:<34}   every step, {what:<15} {got:>10.1} N  reference {want:>10.1} N  {:+.2} %{}",
@@ -469,21 +473,31 @@ fn flexible_panel_cells() {
     let text = flexible_panel();
     let rk4 = run(&dir, "rk4", &text, &["scheme=rk4"]);
     assert!(rk4.error.is_none(), "{:?}", rk4.error);
+    // The midpoint rule at 5 ms: its sampled peak is right, but its largest twine tension over
+    // every step is +2.9 % (+3.5 / +5.6 / +2.1 % at 2.5 / 1.25 / 0.625 ms) without a word: the
+    // twines' unresolved axial modes keep ringing after each snap (docs/notes/twine-ringing.md).
+    // Open; the every-step extreme is not asserted here.
     let o = cell(&dir, "mid-0.005", &text, &["scheme=midpoint", "dt=0.005"]);
     check("panel midpoint dt 0.005", &o, rk4.peak, false);
     for dt in ["1.0", "0.1"] {
+        let name = format!("panel HHT dt {dt}");
         let o = cell(&dir, &format!("hht-{dt}"), &text, &[&format!("dt={dt}")]);
-        check(&format!("panel HHT dt {dt}"), &o, rk4.peak, false);
+        check(&name, &o, rk4.peak, false);
+        check_every_step(&name, &o, rk4.every, false);
     }
     // The midpoint rule at 0.1 s: +1.1 % (median of three), +3.5 % over every step: it keeps
     // an undamped step-to-step oscillation of the twine tensions (1.0–1.3 % RMS near the top),
     // which the step-ripple warning must report.
+    let name = "panel midpoint dt 0.1";
     let o = cell(&dir, "mid-0.1", &text, &["scheme=midpoint", "dt=0.1"]);
-    check("panel midpoint dt 0.1", &o, rk4.peak, true);
-    // HHT at small steps: wrong by several times, so it must warn.
+    check(name, &o, rk4.peak, true);
+    check_every_step(name, &o, rk4.every, true);
+    // HHT-α at small steps: right, over the samples and over every step, and silent.
     for dt in ["0.01", "0.005", "0.001"] {
+        let name = format!("panel HHT dt {dt}");
         let o = cell(&dir, &format!("hht-{dt}"), &text, &[&format!("dt={dt}")]);
-        check(&format!("panel HHT dt {dt}"), &o, rk4.peak, true);
+        check(&name, &o, rk4.peak, false);
+        check_every_step(&name, &o, rk4.every, false);
     }
 }
 
