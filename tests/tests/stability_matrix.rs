@@ -3,8 +3,9 @@
 //! integration (RK4 at its stable step, or the midpoint rule at a step 4–200 times smaller whose
 //! ladder has converged). Every cell must be within 1 % of its reference **or** say so: stop with
 //! an error, or print the energy-guard, time-step, seabed-contact, snap or step-ripple warning.
-//! On the mooring chain both the largest tension over the output samples and the extremes over
-//! every step (largest element tension, anchor reaction) are held to that. Cells expected right
+//! Both the largest tension over the output samples and the extremes over every step (largest
+//! element tension, anchor reaction) are held to that, except the flexible panel's midpoint
+//! cell at 5 ms, which is open on every step (docs/notes/twine-ringing.md). Cells expected right
 //! must also not warn (no false alarms). Cells measured wrong without a word are listed in the
 //! docs as open; they are not asserted here.
 //!
@@ -436,21 +437,15 @@ fn small_cage_cells() {
             &text,
             &["scheme=midpoint", &format!("dt={dt}")],
         );
-        check(
-            &format!("small cage midpoint dt {dt}"),
-            &o,
-            reference.peak,
-            false,
-        );
+        let name = format!("small cage midpoint dt {dt}");
+        check(&name, &o, reference.peak, false);
+        check_every_step(&name, &o, reference.every, false);
     }
     for dt in ["0.5", "0.1", "0.01"] {
         let o = cell(&dir, &format!("hht-{dt}"), &text, &[&format!("dt={dt}")]);
-        check(
-            &format!("small cage HHT dt {dt}"),
-            &o,
-            reference.peak,
-            false,
-        );
+        let name = format!("small cage HHT dt {dt}");
+        check(&name, &o, reference.peak, false);
+        check_every_step(&name, &o, reference.every, false);
     }
 }
 
@@ -570,12 +565,9 @@ fn extreme_cells() {
                 text,
                 &[&format!("scheme={scheme}"), "dt=0.1"],
             );
-            check(
-                &format!("small cage {name} {scheme} dt 0.1"),
-                &o,
-                reference_peak,
-                false,
-            );
+            let cell_name = format!("small cage {name} {scheme} dt 0.1");
+            check(&cell_name, &o, reference_peak, false);
+            check_every_step(&cell_name, &o, reference.outcome.every, false);
         }
     }
 
@@ -592,12 +584,9 @@ fn extreme_cells() {
             &stokes,
             &[&format!("scheme={scheme}"), "dt=0.1"],
         );
-        check(
-            &format!("panel Stokes-2 {scheme} dt 0.1"),
-            &o,
-            rk4.peak,
-            false,
-        );
+        let name = format!("panel Stokes-2 {scheme} dt 0.1");
+        check(&name, &o, rk4.peak, false);
+        check_every_step(&name, &o, rk4.every, false);
     }
     // λ = 1 is right at 0.1 s; λ = 100 (twines 10× thicker on the same mesh) is wrong by 1–20 %
     // in every scheme at these steps, and must say so.
@@ -616,12 +605,9 @@ fn extreme_cells() {
                 &panel,
                 &[&format!("scheme={scheme}"), "dt=0.1", &set],
             );
-            check(
-                &format!("panel λ {lambda} {scheme} dt 0.1"),
-                &o,
-                rk4.peak,
-                may_warn,
-            );
+            let name = format!("panel λ {lambda} {scheme} dt 0.1");
+            check(&name, &o, rk4.peak, may_warn);
+            check_every_step(&name, &o, rk4.every, may_warn);
         }
     }
 }
