@@ -89,7 +89,10 @@ fn sweep() -> Vec<Point> {
             "chain",
             format!("{n} segments"),
             "mooring-chain.toml",
-            &[format!("line.0.segments={n}")],
+            &[
+                format!("line.0.segments={n}"),
+                "analysis.dynamic.scheme=hht".to_string(),
+            ],
         ));
     }
     for el in ["5.0", "2.5", "1.25"] {

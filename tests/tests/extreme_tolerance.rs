@@ -4,9 +4,10 @@
 mod common;
 use common::*;
 
-/// The bundled mooring chain for `t_end` seconds with extra `[analysis.dynamic]` keys.
+/// The bundled mooring chain with the default scheme for `t_end` seconds with extra
+/// `[analysis.dynamic]` keys.
 fn chain(t_end: f64, keys: &str) -> String {
-    let text = example("mooring-chain.toml");
+    let text = example_chain_hht();
     assert!(text.contains("t_end = 60.0"));
     text.replace("t_end = 60.0", &format!("t_end = {t_end}\n{keys}"))
 }

@@ -149,9 +149,9 @@ fn fine_chains_reach_the_elastic_catenary_within_bounded_iterations() {
 }
 
 /// The bundled chain at 160 segments with axial damping ratio 1 (the MoorDyn benchmark's line),
-/// surged for `t_end` seconds.
+/// surged for `t_end` seconds with HHT-α.
 fn surged_chain(t_end: f64) -> String {
-    example("mooring-chain.toml")
+    example_chain_hht()
         .replace("segments = 80", "segments = 160")
         .replace("t_end = 60.0", &format!("t_end = {t_end:.1}"))
         .replace(
