@@ -374,6 +374,8 @@ fn cost(prep: &Prepared, ncomp: usize) -> Cost {
         statics: kind != AnalysisKind::Dynamic,
         mesh_sequence: prep.plan.statics.mesh_sequence,
         driving,
+        midpoint: matches!(&prep.plan.dynamics, Some(crate::plan::Integrator::Hht(s)) if s.midpoint),
+        bodies: built.model.rigid_bodies().len(),
         steps,
         t_end,
     };
