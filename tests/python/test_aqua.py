@@ -33,7 +33,10 @@ def read_summary(out):
 
 
 def chain_scene(tmp_path, t_end, output_interval):
+    # The example's chain (the midpoint rule) at dt 0.1 s.
     text = CHAIN.read_text()
+    assert "dt = 0.025\n" in text
+    text = text.replace("dt = 0.025\n", "dt = 0.1\n")
     text = text.replace("t_end = 60.0", f"t_end = {t_end}")
     text = text.replace("output_interval = 0.5", f"output_interval = {output_interval}")
     p = tmp_path / "chain.toml"

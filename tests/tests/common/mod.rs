@@ -59,14 +59,16 @@ pub fn example(name: &str) -> String {
     std::fs::read_to_string(root().join("examples").join(name)).unwrap()
 }
 
-/// The example's chain with the default scheme (HHT-α) instead of its midpoint rule.
+/// The example's chain with the default scheme (HHT-α) at dt 0.1 s instead of its midpoint
+/// rule at 0.025 s.
 pub fn example_chain_hht() -> String {
     let text = example("mooring-chain.toml");
+    let own = "scheme = \"midpoint\"\ndt = 0.025\n";
     assert!(
-        text.contains("scheme = \"midpoint\"\n"),
-        "the chain example's scheme moved"
+        text.contains(own),
+        "the chain example's scheme or step moved"
     );
-    text.replace("scheme = \"midpoint\"\n", "")
+    text.replace(own, "dt = 0.1\n")
 }
 
 /// The stability matrix's chain: examples/mooring-chain.toml at 40 segments, 30 s, samples
