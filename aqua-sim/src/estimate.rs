@@ -6,10 +6,10 @@
 //!
 //! One Newton iteration costs a part proportional to the elements (evaluation and assembly of
 //! the cables and water loads; in dynamics also the sea at every node and wave component, a
-//! fixed part and a part per rigid body) and a part for the sparse factorisation, which grows faster than the unknowns: each net is a
-//! 2-D mesh whose factor fills in, measured as growing with the square of the net's free DOFs
-//! (the cages of a farm are separate nets joined by a few bridle DOFs, so a farm of 8 cages
-//! costs 8 cages, not one net of 8 times the DOFs). The static solver needs more iterations
+//! fixed part and a part per rigid body) and a part for the sparse factorisation, which grows
+//! faster than the unknowns: each net is a 2-D mesh whose factor fills in, measured as growing
+//! with the square of the net's free DOFs (the cages of a farm are separate nets joined by a few
+//! bridle DOFs, so a farm of 8 cages costs 8 cages, not one net of 8 times the DOFs). The static solver needs more iterations
 //! the finer the net (docs/theory/fem.md#static-solver): 76 / 108 / 333 iterations on the
 //! reference cage at 5 / 2.5 / 1.25 m elements.
 
