@@ -143,7 +143,7 @@ mod system;
 pub use bending::Hinge;
 pub use dynamics::{
     CONTACT_IMPACT, CONTACT_LOSS_WARNING, ContactResolution, DEFAULT_ALPHA, DEFAULT_THETA,
-    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, ExtremeResolution,
+    DynamicSettings, DynamicSolver, ENERGY_GROWTH_TOL, Energies, ExtremeResolution, GroupSnaps,
     LinearSolverKind, LinearSolverStats, MassMatrix, RESOLVED_PHASE, SNAP_EXCESS_WARNING,
     SnapExtreme, SnapResolution, Snapshot, StepControl, StepEvent, StepReport, TensionResolution,
 };

@@ -24,7 +24,9 @@ pub use extreme_control::ExtremeResolution;
 pub(crate) use hht::{HhtForces, use_hht_force};
 pub(crate) use scheme::{ForceEvaluation, Scheme};
 pub use settings::{DEFAULT_ALPHA, DEFAULT_THETA, DynamicSettings, LinearSolverKind, MassMatrix};
-pub use snap_resolution::{RESOLVED_PHASE, SNAP_EXCESS_WARNING, SnapExtreme, SnapResolution};
+pub use snap_resolution::{
+    GroupSnaps, RESOLVED_PHASE, SNAP_EXCESS_WARNING, SnapExtreme, SnapResolution,
+};
 pub use snapshot::Snapshot;
 pub use step_control::{StepControl, StepEvent, StepReport, TensionResolution};
 pub use step_ripple::{MIN_RIPPLE_WINDOWS, StepRipple, step_ripple};

@@ -59,6 +59,22 @@ pub struct SnapResolution {
     /// snap of theirs (in its step or the next), largest tension first.
     #[serde(default)]
     pub support: Vec<SnapExtreme>,
+    /// The unresolved snaps of the group whose element carries the run's largest tension (None
+    /// when that group had none): with a scheme that keeps the energy of unresolved modes, each
+    /// leaves its elements ringing at up to its crest, on top of that group's tension.
+    #[serde(default)]
+    pub peak_group: Option<GroupSnaps>,
+}
+
+/// The unresolved snaps of one element group.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct GroupSnaps {
+    /// The group.
+    pub group: usize,
+    /// How many of its elements' snaps were unresolved.
+    pub snaps: usize,
+    /// The largest of their estimated crests T* [N].
+    pub estimate: f64,
 }
 
 /// An element whose largest tension over the run (the run's largest, or a supported
@@ -144,6 +160,10 @@ pub(crate) struct SnapTracker {
     snapped_before: Vec<(usize, usize, SnapAt)>,
     /// The run's largest tension so far, its element and group, when, and its snap.
     peak: (ElementTop, usize, usize),
+    /// Each element's group.
+    group_of: Vec<usize>,
+    /// Each group's unresolved snaps: their count and largest crest T* [N].
+    group_snaps: Vec<(usize, f64)>,
     /// The end of the last accepted step [s].
     t_now: f64,
 }
@@ -164,6 +184,8 @@ impl SnapTracker {
             }
         }
         let n = support.len();
+        let group_of: Vec<usize> = model.elements().iter().map(|el| el.group).collect();
+        let groups = group_of.iter().map(|g| g + 1).max().unwrap_or(0);
         Some(Self {
             computed: 0.0,
             worst: SnapResolution::default(),
@@ -176,6 +198,8 @@ impl SnapTracker {
             snapped_now: Vec::new(),
             snapped_before: Vec::new(),
             peak: (ElementTop::default(), 0, 0),
+            group_of,
+            group_snaps: vec![(0, 0.0); groups],
             t_now: 0.0,
         })
     }
@@ -244,6 +268,9 @@ impl SnapTracker {
             }
             self.worst.snaps += 1;
             let estimate = speed * (k * mr).sqrt();
+            let g = &mut self.group_snaps[el.group];
+            g.0 += 1;
+            g.1 = g.1.max(estimate);
             let at = SnapAt {
                 dt: h,
                 speed,
@@ -303,8 +330,15 @@ impl SnapTracker {
                 .then(a.element.cmp(&b.element))
         });
         let (top, element, group) = &self.peak;
+        let peak_group = self.group_of[*element];
+        let (snaps, estimate) = self.group_snaps[peak_group];
         *out = Some(SnapResolution {
             peak: top.extreme(*element, *group),
+            peak_group: (snaps > 0).then_some(GroupSnaps {
+                group: peak_group,
+                snaps,
+                estimate,
+            }),
             support,
             computed: self.computed,
             excess: if self.computed > 0.0 {
@@ -514,5 +548,63 @@ mod tests {
         let r = tr.resolution().expect("an unresolved snap");
         assert!((r.estimate - 1.1).abs() < 1e-6, "{}", r.estimate);
         assert!(r.support.is_empty() && r.peak.is_none(), "{r:?}");
+    }
+
+    /// Two ropes like [`model`]'s, each its own group ("a", then "b"), from held nodes at
+    /// y = 0 and y = 5 m.
+    fn two_groups() -> Model {
+        let mut b = ModelBuilder::new(Environment::default());
+        for (name, y) in [("a", 0.0), ("b", 5.0)] {
+            let g = b.add_group(name, CableSection::new(1e5, 1e-6)).unwrap();
+            let a = b.add_node([0.0, y, 0.0]).unwrap();
+            let n = b.add_node([0.9, y, 0.0]).unwrap();
+            b.add_cable(a, n, g, UnstretchedLength::Given(1.0)).unwrap();
+            b.add_point_body(crate::PointBody {
+                node: n,
+                mass: 10.0,
+                force: [0.0; 3],
+                seabed_stiffness: 0.0,
+            })
+            .unwrap();
+            b.fix(a, Dofs::ALL).unwrap();
+        }
+        b.build().unwrap()
+    }
+
+    /// The unresolved snaps of the group that carries the run's largest tension are counted
+    /// with their largest crest; those of another group are not its.
+    #[test]
+    fn the_snaps_of_the_largest_tension_group_are_counted() {
+        let m = two_groups();
+        let z = [[0.0; 3]; 4];
+        let h = 0.1;
+        let slack = [[0.0; 3], [0.9, 0.0, 0.0], [0.0, 5.0, 0.0], [0.9, 5.0, 0.0]];
+        let taut = [
+            [0.0; 3],
+            [1.01, 0.0, 0.0],
+            [0.0, 5.0, 0.0],
+            [1.01, 5.0, 0.0],
+        ];
+        // Group "b" snaps at 1.1 m/s (T* = 1 100 N), group "a" does not move.
+        let vb = [[0.0; 3], [0.0; 3], [0.0; 3], [1.0, 0.0, 0.0]];
+        let only_b = [[0.0; 3], [0.9, 0.0, 0.0], [0.0, 5.0, 0.0], [1.01, 5.0, 0.0]];
+        let mut tr = SnapTracker::new(&m).unwrap();
+        tr.step(&m, &[], (&slack, &vb, &z), (&only_b, &z), 0.0, h);
+        // The largest tension is group "a"'s (element 0): it had no snap.
+        tr.observe(&[2000.0, 1000.0]);
+        assert_eq!(tr.resolution().expect("a snap").peak_group, None);
+        // Both snap, "a" at 0.5 m/s (T* = 500 N) and "b" again; then "a" at 1.1 m/s.
+        let v = [[0.0; 3], [0.4, 0.0, 0.0], [0.0; 3], [1.0, 0.0, 0.0]];
+        tr.step(&m, &[], (&slack, &v, &z), (&taut, &z), h, h);
+        let v = [[0.0; 3], [1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]];
+        tr.step(&m, &[], (&slack, &v, &z), (&taut, &z), 2.0 * h, h);
+        tr.observe(&[2000.0, 1000.0]);
+        let g = tr
+            .resolution()
+            .unwrap()
+            .peak_group
+            .expect("group a snapped");
+        assert_eq!((g.group, g.snaps), (m.elements()[0].group, 2));
+        assert!((g.estimate - 1100.0).abs() < 1e-3, "{g:?}");
     }
 }
