@@ -118,9 +118,9 @@ const ANCHORS_UNRESOLVED: &[&str] = &["moored-cage.toml"];
 
 /// The warnings of a run that say its extremes are uncertain: the time-step indicator's
 /// (`fem/time-step`), the unmet `extreme_tolerance` (`fem/extremes-unresolved`), HHT-α's
-/// energy guard (`fem/energy-guard`), the unresolved seabed contact (`fem/seabed-contact`) and
-/// the snaps absorbed inside one step (`fem/snap`); run.json lists diagnostics as
-/// `severity: message`.
+/// energy guard (`fem/energy-guard`), the unresolved seabed contact (`fem/seabed-contact`),
+/// the snaps absorbed inside one step and their ringing (`fem/snap`); run.json lists
+/// diagnostics as `severity: message`.
 fn uncertainty_warnings(run: &serde_json::Value) -> Vec<String> {
     run["diagnostics"]
         .as_array()
@@ -133,7 +133,8 @@ fn uncertainty_warnings(run: &serde_json::Value) -> Vec<String> {
                     || d.contains("extreme_tolerance")
                     || d.contains("energy guard")
                     || d.contains("seabed-contact-resolution")
-                    || d.contains("snap-resolution"))
+                    || d.contains("snap-resolution")
+                    || d.contains("snap-ringing"))
         })
         .map(str::to_string)
         .collect()
