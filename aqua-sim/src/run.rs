@@ -748,6 +748,10 @@ fn snap_ringing_warning(
     }
     let snaps = record.step_control.as_ref()?.snaps.as_ref()?;
     let g = snaps.peak_group?;
+    // A run whose tensions were never positive has no extreme to ring on.
+    if snaps.computed <= 0.0 {
+        return None;
+    }
     let share = g.estimate / snaps.computed;
     if share.is_nan() || share <= SNAP_RINGING_WARNING {
         return None;
