@@ -454,12 +454,12 @@ mod tests {
     use super::*;
     use crate::{CableSection, Dofs, Environment, ModelBuilder, UnstretchedLength};
 
-    /// A rope of L0 = 1 m from a held node to a free 10 kg node at 0.9 m (slack).
-    fn model() -> Model {
-        let mut b = ModelBuilder::new(Environment::default());
-        let g = b.add_group("rope", CableSection::new(1e5, 1e-6)).unwrap();
-        let a = b.add_node([0.0; 3]).unwrap();
-        let n = b.add_node([0.9, 0.0, 0.0]).unwrap();
+    /// Adds a rope of L0 = 1 m in its own group `name`, from a held node at (0, y, 0) to a free
+    /// 10 kg node at (0.9, y, 0) (slack).
+    fn add_rope(b: &mut ModelBuilder, name: &str, y: f64) {
+        let g = b.add_group(name, CableSection::new(1e5, 1e-6)).unwrap();
+        let a = b.add_node([0.0, y, 0.0]).unwrap();
+        let n = b.add_node([0.9, y, 0.0]).unwrap();
         b.add_cable(a, n, g, UnstretchedLength::Given(1.0)).unwrap();
         b.add_point_body(crate::PointBody {
             node: n,
@@ -469,6 +469,12 @@ mod tests {
         })
         .unwrap();
         b.fix(a, Dofs::ALL).unwrap();
+    }
+
+    /// One rope (see [`add_rope`]).
+    fn model() -> Model {
+        let mut b = ModelBuilder::new(Environment::default());
+        add_rope(&mut b, "rope", 0.0);
         b.build().unwrap()
     }
 
@@ -550,24 +556,11 @@ mod tests {
         assert!(r.support.is_empty() && r.peak.is_none(), "{r:?}");
     }
 
-    /// Two ropes like [`model`]'s, each its own group ("a", then "b"), from held nodes at
-    /// y = 0 and y = 5 m.
+    /// Two ropes (see [`add_rope`]): group "a" at y = 0, then group "b" at y = 5 m.
     fn two_groups() -> Model {
         let mut b = ModelBuilder::new(Environment::default());
-        for (name, y) in [("a", 0.0), ("b", 5.0)] {
-            let g = b.add_group(name, CableSection::new(1e5, 1e-6)).unwrap();
-            let a = b.add_node([0.0, y, 0.0]).unwrap();
-            let n = b.add_node([0.9, y, 0.0]).unwrap();
-            b.add_cable(a, n, g, UnstretchedLength::Given(1.0)).unwrap();
-            b.add_point_body(crate::PointBody {
-                node: n,
-                mass: 10.0,
-                force: [0.0; 3],
-                seabed_stiffness: 0.0,
-            })
-            .unwrap();
-            b.fix(a, Dofs::ALL).unwrap();
-        }
+        add_rope(&mut b, "a", 0.0);
+        add_rope(&mut b, "b", 5.0);
         b.build().unwrap()
     }
 
