@@ -13,6 +13,11 @@
 //! its own extreme, of each element with one end held (an anchor's, or a prescribed
 //! fairlead's), which carries the support's reaction whatever the run's largest tension is
 //! (`SnapResolution::support`).
+//!
+//! Each element group's unresolved snaps are counted with their largest crest T*; those of the
+//! group that carries the run's largest tension (`SnapResolution::peak_group`) say how much a
+//! scheme that keeps the energy of unresolved modes (the midpoint rule with θ = ½) leaves
+//! ringing on that extreme (docs/theory/fem.md#snap-ringing).
 
 use crate::model::Model;
 use crate::system::sub;
