@@ -2,7 +2,8 @@
 # Builds one wheel holding both the Python module `aqua` and the `aqua` command.
 #
 #   bash aqua-py/build_wheel.sh            # release build; the wheel lands in target/wheels/
-#   bash aqua-py/build_wheel.sh --debug    # reuses a debug build (what CI checks)
+#   bash aqua-py/build_wheel.sh --debug    # packages the debug `aqua` that `cargo test
+#                                          # --workspace` built (what CI checks)
 #   pip install target/wheels/aqua-*.whl
 #
 # Needs cargo and maturin (`pip install "maturin>=1.9.4,<2"`). The command is the binary of
@@ -15,7 +16,9 @@ profile=release
 target="${CARGO_TARGET_DIR:-$PWD/../target}"
 if [ "$profile" = release ]; then
   cargo build --release -p aqua-cli
-else
+elif [ ! -x "$target/debug/aqua" ]; then
+  # `cargo build -p aqua-cli` resolves dependency features for aqua-cli alone, so after `cargo
+  # test --workspace` it compiles every dependency a second time: reuse that build's binary.
   cargo build -p aqua-cli
 fi
 rm -rf aqua.data
